@@ -1,0 +1,60 @@
+#pragma once
+// Default domain model: the global points and a list of named, numbered segments.
+#include <algorithm>
+#include <deque>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gsse/container/segment.hpp"
+#include "gsse/geometry/point.hpp"
+
+namespace gsse {
+
+template <std::size_t D>
+class domain {
+ public:
+  static constexpr std::size_t dimension = D;
+  using point_type = point<D>;
+  using segment_type = segment<D>;
+
+  vertex_id add_point(const point_type& p) {
+    points_.push_back(p);
+    sync_slots();
+    return static_cast<vertex_id>(points_.size() - 1);
+  }
+  void reserve_points(std::size_t n) { points_.reserve(n); }
+  std::vector<point_type>& mutable_points() { return points_; }
+  const std::vector<point_type>& points() const { return points_; }
+  const point_type& position(vertex_id v) const { return points_[v]; }
+
+  segment_type& add_segment(std::string name, int number) {
+    if (find(name)) throw std::invalid_argument("gsse: segment '" + name + "' exists already");
+    segments_.emplace_back(std::move(name), number);
+    segments_.back().set_vertex_slots(points_.size());
+    return segments_.back();
+  }
+  std::deque<segment_type>& segments() { return segments_; }
+  const std::deque<segment_type>& segments() const { return segments_; }
+  segment_type* find(std::string_view name) {
+    for (auto& s : segments_)
+      if (s.name() == name) return &s;
+    return nullptr;
+  }
+  const segment_type* find(std::string_view name) const {
+    for (auto& s : segments_)
+      if (s.name() == name) return &s;
+    return nullptr;
+  }
+  /// Propagates the point count to the segments' vertex-quantity slots (after bulk edits).
+  void sync_slots() {
+    for (auto& s : segments_) s.set_vertex_slots(points_.size());
+  }
+
+ private:
+  std::vector<point_type> points_;
+  std::deque<segment_type> segments_;  // deque: references stay valid as segments are added
+};
+
+}  // namespace gsse

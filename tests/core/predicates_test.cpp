@@ -1,0 +1,213 @@
+#define BOOST_TEST_MODULE predicates
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <vector>
+
+#include "gsse/geometry/predicates.hpp"
+
+using namespace gsse;
+using namespace gsse::geometry;
+
+namespace {
+
+using tet = std::array<int, 4>;
+using tri = std::array<int, 3>;
+
+/// All tetrahedra of `p` that pass the perturbed empty-sphere test against every other point.
+std::vector<tet> perturbed_delaunay(const std::vector<point3>& p) {
+  const int n = static_cast<int>(p.size());
+  std::vector<tet> r;
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b)
+      for (int c = b + 1; c < n; ++c)
+        for (int d = c + 1; d < n; ++d) {
+          tet t{a, b, c, d};
+          const int o = orient3d(p[a], p[b], p[c], p[d]);
+          if (o == 0) continue;
+          if (o < 0) std::swap(t[0], t[1]);
+          bool empty = true;
+          for (int e = 0; e < n && empty; ++e) {
+            if (e == a || e == b || e == c || e == d) continue;
+            const int s = in_sphere_perturbed(p[t[0]], p[t[1]], p[t[2]], p[t[3]], p[e]);
+            BOOST_REQUIRE(s != 0);
+            empty = s < 0;
+          }
+          if (empty) r.push_back(t);
+        }
+  return r;
+}
+
+/// Checks that `tets` is one valid tetrahedralization of conv(p) using every point: positively
+/// oriented, every interior face shared by exactly two tets lying on opposite sides, every face
+/// used once lying on the hull. (A pseudo-manifold of degree one whose boundary lies on the hull
+/// boundary is a triangulation of the hull.)
+void check_tetrahedralization(const std::vector<point3>& p, const std::vector<tet>& tets) {
+  BOOST_TEST_REQUIRE(!tets.empty());
+  std::map<tri, std::vector<std::pair<int, int>>> faces;  // sorted face -> (tet, apex)
+  std::set<int> used;
+  for (int k = 0; k < static_cast<int>(tets.size()); ++k) {
+    const auto& t = tets[static_cast<std::size_t>(k)];
+    BOOST_TEST(orient3d(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) == 1);
+    for (int i = 0; i < 4; ++i) {
+      used.insert(t[i]);
+      tri f;
+      int m = 0;
+      for (int j = 0; j < 4; ++j)
+        if (j != i) f[m++] = t[j];
+      std::sort(f.begin(), f.end());
+      faces[f].push_back({k, t[i]});
+    }
+  }
+  BOOST_TEST(used.size() == p.size());
+  for (const auto& [f, users] : faces) {
+    BOOST_TEST_REQUIRE(users.size() <= 2u);
+    if (users.size() == 2) {
+      const int s0 = orient3d(p[f[0]], p[f[1]], p[f[2]], p[users[0].second]);
+      const int s1 = orient3d(p[f[0]], p[f[1]], p[f[2]], p[users[1].second]);
+      BOOST_TEST(s0 * s1 == -1);
+    } else {
+      int pos = 0, neg = 0;
+      for (const auto& q : p) {
+        const int s = orient3d(p[f[0]], p[f[1]], p[f[2]], q);
+        pos += s > 0;
+        neg += s < 0;
+      }
+      BOOST_TEST((pos == 0 || neg == 0));  // a face used once lies on the hull
+    }
+  }
+}
+
+bool coplanar(const std::vector<point3>& p) {
+  for (std::size_t a = 0; a < p.size(); ++a)
+    for (std::size_t b = a + 1; b < p.size(); ++b)
+      for (std::size_t c = b + 1; c < p.size(); ++c) {
+        if (collinear(p[a], p[b], p[c])) continue;
+        for (const auto& q : p)
+          if (orient3d(p[a], p[b], p[c], q) != 0) return false;
+        return true;
+      }
+  return true;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(exact_signs) {
+  const point3 o{0, 0, 0}, x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};
+  BOOST_TEST(orient3d(o, x, y, z) == 1);
+  BOOST_TEST(orient3d(o, y, x, z) == -1);
+  BOOST_TEST(orient3d(o, x, y, point3{0.3, 0.3, 0}) == 0);
+  BOOST_TEST(orient2d(point2{0, 0}, point2{1, 0}, point2{0, 1}) == 1);
+  BOOST_TEST(in_sphere(o, x, y, z, point3{0.1, 0.1, 0.1}) == 1);
+  BOOST_TEST(in_sphere(o, x, y, z, point3{2, 2, 2}) == -1);
+  BOOST_TEST(in_sphere(o, x, y, z, point3{1, 1, 1}) == 0);  // cube corner: cospherical
+  BOOST_TEST(in_diametral(o, x, point3{0.5, 0.4, 0}) == 1);
+  BOOST_TEST(in_diametral(o, x, point3{0.5, 0.5, 0}) == 0);
+  BOOST_TEST(in_equatorial(o, x, y, point3{0.5, 0.5, 0.70}) == 1);
+  BOOST_TEST(in_equatorial(o, x, y, point3{0.5, 0, 0.5}) == 0);
+  BOOST_TEST(in_equatorial(o, x, y, point3{0.5, 0.5, 0.71}) == -1);
+  // a nearly degenerate case that naive double evaluation gets wrong
+  const double e = 1e-17;
+  BOOST_TEST(orient2d(point2{0.5, 0.5}, point2{12, 12}, point2{24, 24 + 24 * e}) == 0);
+  BOOST_TEST(orient2d(point2{0.5, 0.5}, point2{12, 12}, point2{24, std::nextafter(24.0, 25.0)}) == 1);
+}
+
+BOOST_AUTO_TEST_CASE(cube_corners) {
+  std::vector<point3> p;
+  for (int i = 0; i < 8; ++i) p.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+  // every raw in-sphere test among the corners is a tie; the perturbed one never is
+  int ties = 0;
+  for (int a = 0; a < 8; ++a)
+    for (int b = 0; b < 8; ++b)
+      for (int c = 0; c < 8; ++c)
+        for (int d = 0; d < 8; ++d) {
+          if (orient3d(p[a], p[b], p[c], p[d]) != 1) continue;
+          for (int e = 0; e < 8; ++e) {
+            if (e == a || e == b || e == c || e == d) continue;
+            ties += in_sphere(p[a], p[b], p[c], p[d], p[e]) == 0;
+            BOOST_TEST(in_sphere_perturbed(p[a], p[b], p[c], p[d], p[e]) != 0);
+          }
+        }
+  BOOST_TEST(ties > 0);
+  const auto t = perturbed_delaunay(p);
+  check_tetrahedralization(p, t);
+  BOOST_TEST((t.size() == 5u || t.size() == 6u));
+}
+
+BOOST_AUTO_TEST_CASE(lattice_cospherical_sets) {
+  // 5x5x5 lattice. Every group of >= 5 lattice points on a common sphere centred at a
+  // half-integer point of the central region is checked: the tetrahedra passing the perturbed
+  // empty-sphere test form exactly one tetrahedralization of the group's hull.
+  std::vector<point3> lattice;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j)
+      for (int k = 0; k < 5; ++k) lattice.push_back({double(i), double(j), double(k)});
+  int groups = 0;
+  std::size_t largest = 0;
+  for (int ci = 2; ci <= 6; ++ci)
+    for (int cj = 2; cj <= 6; ++cj)
+      for (int ck = 2; ck <= 6; ++ck) {
+        const point3 c{ci * 0.5, cj * 0.5, ck * 0.5};
+        std::map<double, std::vector<point3>> shells;
+        for (const auto& q : lattice) shells[squared_distance(q, c)].push_back(q);
+        for (auto& [r2, pts] : shells) {
+          if (r2 == 0 || pts.size() < 5 || pts.size() > 26 || coplanar(pts)) continue;
+          ++groups;
+          largest = std::max(largest, pts.size());
+          BOOST_TEST_CONTEXT("centre " << c[0] << "," << c[1] << "," << c[2] << " r2 " << r2) {
+            check_tetrahedralization(pts, perturbed_delaunay(pts));
+          }
+        }
+      }
+  BOOST_TEST(groups > 100);
+  BOOST_TEST(largest >= 24u);
+}
+
+BOOST_AUTO_TEST_CASE(cocircular_points_2d) {
+  // 4 cocircular points: exactly one of the two triangulations of the quad passes the test
+  const std::vector<std::vector<point2>> quads = {
+      {{0, 0}, {1, 0}, {1, 1}, {0, 1}},
+      {{1, 0}, {0, 1}, {-1, 0}, {0, -1}},
+      {{3, 4}, {-4, 3}, {-3, -4}, {5, 0}}};  // on the circle of radius 5
+  for (const auto& q : quads) {
+    BOOST_TEST(in_circle(q[0], q[1], q[2], q[3]) == 0);
+    // triangles (0,1,2)+(0,2,3) use diagonal 02; (0,1,3)+(1,2,3) use diagonal 13
+    auto empty = [&](int a, int b, int c, int d) {
+      std::array<int, 3> t{a, b, c};
+      if (orient2d(q[t[0]], q[t[1]], q[t[2]]) < 0) std::swap(t[0], t[1]);
+      const int s = in_circle_perturbed(q[t[0]], q[t[1]], q[t[2]], q[d]);
+      BOOST_TEST(s != 0);
+      return s < 0;
+    };
+    const bool d02 = empty(0, 1, 2, 3) && empty(0, 2, 3, 1);
+    const bool d13 = empty(0, 1, 3, 2) && empty(1, 2, 3, 0);
+    BOOST_TEST(d02 != d13);
+    // the perturbed decision is consistent: each triangle's verdict matches its diagonal's
+    BOOST_TEST(empty(0, 1, 2, 3) == empty(0, 2, 3, 1));
+    BOOST_TEST(empty(0, 1, 3, 2) == empty(1, 2, 3, 0));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(planar_perturbation_matches_2d) {
+  // In-plane decisions on 3D points in z = 0 agree with the 2D perturbed predicate, for every
+  // quadruple of a 4x4 lattice (full of cocircular ties).
+  std::vector<point2> p2;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) p2.push_back({double(i), double(j)});
+  int ties = 0;
+  for (std::size_t a = 0; a < p2.size(); ++a)
+    for (std::size_t b = 0; b < p2.size(); ++b)
+      for (std::size_t c = 0; c < p2.size(); ++c) {
+        if (orient2d(p2[a], p2[b], p2[c]) != 1) continue;
+        for (std::size_t d = 0; d < p2.size(); ++d) {
+          if (d == a || d == b || d == c) continue;
+          auto l = [](const point2& q) { return point3{q[0], q[1], 0}; };
+          ties += in_circle(p2[a], p2[b], p2[c], p2[d]) == 0;
+          BOOST_TEST(in_circle_perturbed(p2[a], p2[b], p2[c], p2[d]) ==
+                     in_coplanar_circle_perturbed(l(p2[a]), l(p2[b]), l(p2[c]), l(p2[d]), 2));
+        }
+      }
+  BOOST_TEST(ties > 0);
+}
