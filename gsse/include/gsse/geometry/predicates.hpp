@@ -128,13 +128,16 @@ inline int in_sphere_perturbed(const point3& a, const point3& b, const point3& c
   return -1;
 }
 
-/// Perturbed in-circle for four coplanar 3D points, with orientations measured in the projection
-/// that drops `axis`. abc must be counter-clockwise in that projection. Because the lifting
-/// restricted to a plane differs from the planar lifting by an affine function only, this agrees
-/// with in_sphere_perturbed on the 3D Delaunay triangulation restricted to the plane.
+/// Perturbed in-circle for a triangle abc of 3D points lying in (or, after rounding, near) a facet
+/// plane: d is tested against the equatorial ball of abc (the ball whose equator is the circumcircle
+/// of abc), which for coplanar points is exactly the in-circle test. Orientations of the
+/// perturbation are measured in the projection that drops `axis`; abc must be counter-clockwise
+/// there. The lifting restricted to a plane differs from the planar lifting by an affine function
+/// only, so for coplanar points this agrees with in_sphere_perturbed on the 3D Delaunay
+/// tetrahedralization restricted to the plane.
 inline int in_coplanar_circle_perturbed(const point3& a, const point3& b, const point3& c, const point3& d,
                                         int axis) {
-  if (const int s = in_coplanar_circle(a, b, c, d); s != 0) return s;
+  if (const int s = in_equatorial(a, b, c, d); s != 0) return s;
   std::array<const point3*, 4> p{&a, &b, &c, &d};
   for (int k : detail::by_decreasing_rank(p)) {
     if (k == 3) return -1;

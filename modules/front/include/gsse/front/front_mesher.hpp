@@ -1,0 +1,40 @@
+#pragma once
+// Front mesher: fills a region from its boundary by gift-wrapping (see gift_wrap.hpp).
+// Instantiated once in the library for 3D tetrahedra, 2D triangles and planar facets of 3D PLCs.
+#include <array>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "gsse/front/point_grid.hpp"
+#include "gsse/geometry/point.hpp"
+
+namespace gsse::front {
+
+struct wrap_stats;
+
+/// Grid over all points, shared read-only by every region meshed with them.
+point_grid<3> make_grid(std::span<const point3> pts);
+point_grid<2> make_grid(std::span<const point2> pts);
+/// Grid over points projected by dropping `axis` (facets of a 3D PLC).
+point_grid<2> make_grid(std::span<const point3> pts, int axis, std::span<const vertex_id> subset);
+
+/// Tetrahedra filling the region bounded by `boundary` (triangles oriented so that the region lies
+/// on their positive side: orient3d(a,b,c,inside) > 0). Candidates are all points of `grid`.
+std::vector<std::array<vertex_id, 4>> wrap(std::span<const point3> pts, const point_grid<3>& grid,
+                                           const std::vector<std::array<vertex_id, 3>>& boundary,
+                                           const std::string& label, wrap_stats* stats = nullptr,
+                                           std::size_t max_cells = 0);
+/// Triangles filling the region bounded by `boundary` (edges with the region on their left).
+std::vector<std::array<vertex_id, 3>> wrap(std::span<const point2> pts, const point_grid<2>& grid,
+                                           const std::vector<std::array<vertex_id, 2>>& boundary,
+                                           const std::string& label, wrap_stats* stats = nullptr,
+                                           std::size_t max_cells = 0);
+/// Triangles of a planar facet of 3D points: edges with the facet on their left in the projection
+/// dropping `axis`; the grid must be built with the same axis.
+std::vector<std::array<vertex_id, 3>> wrap_facet(std::span<const point3> pts, int axis, const point_grid<2>& grid,
+                                                 const std::vector<std::array<vertex_id, 2>>& boundary,
+                                                 const std::string& label, wrap_stats* stats = nullptr,
+                                                 std::size_t max_cells = 0);
+
+}  // namespace gsse::front

@@ -1,0 +1,185 @@
+#pragma once
+// Geometry kernels of the gift-wrapping front: the exact decisions (side of a face, "y beats x":
+// y lies in the perturbed circumball of face+x) and the double constructions used only to bound
+// the search region. A kernel provides:
+//   dim, grid_dim, face (std::array<vertex_id, dim>)
+//   side(f, y)          +1 if y lies on the inner (positive) side of oriented face f
+//   beats(f, x, y)      true if y is inside the perturbed circumball of f+x (side(f,x) > 0)
+//   ball(f, x, c, r)    centre and radius in grid coordinates of a ball containing that
+//                       circumball (the projection of a ball is inside the projected ball);
+//                       false if the construction is unreliable
+//   prepare(f) -> probe double data of f; estimate(probe, q): the "Delaunay distance" of a point
+//                       (offset of the circumcentre of f+q along f's normal; +inf behind f), a
+//                       ranking hint only: every decision is confirmed exactly
+//   seed(probe, lo, hi) first search box
+//   grid_coord(v)       grid coordinates of vertex v
+#include <array>
+#include <cmath>
+#include <limits>
+#include <span>
+
+#include "gsse/geometry/predicates.hpp"
+
+namespace gsse::front {
+
+namespace detail {
+inline constexpr double eps = std::numeric_limits<double>::epsilon();
+// Relative error budget of a double circumcentre: beyond this the box is not trusted.
+inline constexpr double max_relative_error = 1e-6;
+/// Radius of a ball that surely contains the exact circumball, given the double radius, the
+/// relative error bound of the centre construction and the longest edge.
+inline double padded(double r, double rel, double edge) { return r * (1 + 4 * rel + 1e-12) + 4 * rel * edge + 1e-300; }
+}  // namespace detail
+
+/// Tetrahedra in 3D.
+struct volume_kernel {
+  static constexpr std::size_t dim = 3, grid_dim = 3;
+  using face = std::array<vertex_id, 3>;
+  using coord = std::array<double, 3>;
+  std::span<const point3> p;
+
+  int side(const face& f, vertex_id y) const { return geometry::orient3d(p[f[0]], p[f[1]], p[f[2]], p[y]); }
+  bool beats(const face& f, vertex_id x, vertex_id y) const {
+    return geometry::in_sphere_perturbed(p[f[0]], p[f[1]], p[f[2]], p[x], p[y]) > 0;
+  }
+  coord grid_coord(vertex_id v) const { return p[v]; }
+  bool ball(const face& f, vertex_id x, coord& centre, double& r) const {
+    const point3& a = p[f[0]];
+    const point3 u = p[f[1]] - a, v = p[f[2]] - a, w = p[x] - a;
+    const point3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
+    const double det = dot(u, vw);
+    const double scale = std::sqrt(dot(u, u) * dot(v, v) * dot(w, w));
+    const double rel = det == 0 ? 1.0 : scale / std::abs(det) * detail::eps * 64;
+    if (rel > detail::max_relative_error) return false;
+    const point3 c = (1.0 / (2 * det)) * (dot(u, u) * vw + dot(v, v) * wu + dot(w, w) * uv);
+    r = detail::padded(std::sqrt(dot(c, c)), rel, std::sqrt(std::max({dot(u, u), dot(v, v), dot(w, w)})));
+    centre = a + c;
+    return true;
+  }
+  struct probe {
+    point3 cc, n;
+    double r2, l;
+  };
+  probe prepare(const face& f) const {
+    const point3& a = p[f[0]];
+    const point3 u = p[f[1]] - a, v = p[f[2]] - a;
+    const point3 n = cross(u, v);
+    const double nn = dot(n, n);
+    const point3 c = (1.0 / (2 * nn)) * cross(dot(u, u) * v - dot(v, v) * u, n);
+    const double l = std::sqrt(std::max({dot(u, u), dot(v, v), squared_distance(p[f[1]], p[f[2]])}));
+    return {a + c, (1.0 / std::sqrt(nn)) * n, dot(c, c), l};
+  }
+  static double estimate(const probe& pr, const coord& q) {
+    const point3 d = q - pr.cc;
+    const double h = dot(d, pr.n);
+    return h > 0 ? (dot(d, d) - pr.r2) / (2 * h) : std::numeric_limits<double>::infinity();
+  }
+  static void seed(const probe& pr, coord& lo, coord& hi) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double m = pr.cc[k] + 0.4 * pr.l * pr.n[k];
+      lo[k] = m - 0.5 * pr.l;
+      hi[k] = m + 0.5 * pr.l;
+    }
+  }
+};
+
+/// Triangles in 2D.
+struct plane_kernel {
+  static constexpr std::size_t dim = 2, grid_dim = 2;
+  using face = std::array<vertex_id, 2>;
+  using coord = std::array<double, 2>;
+  std::span<const point2> p;
+
+  int side(const face& f, vertex_id y) const { return geometry::orient2d(p[f[0]], p[f[1]], p[y]); }
+  bool beats(const face& f, vertex_id x, vertex_id y) const {
+    return geometry::in_circle_perturbed(p[f[0]], p[f[1]], p[x], p[y]) > 0;
+  }
+  coord grid_coord(vertex_id v) const { return p[v]; }
+  bool ball(const face& f, vertex_id x, coord& centre, double& r) const {
+    const point2& a = p[f[0]];
+    const point2 u = p[f[1]] - a, v = p[x] - a;
+    const double d = 2 * (u[0] * v[1] - u[1] * v[0]);
+    const double scale = std::sqrt(dot(u, u) * dot(v, v));
+    const double rel = d == 0 ? 1.0 : scale / std::abs(d) * detail::eps * 64;
+    if (rel > detail::max_relative_error) return false;
+    const point2 c{(v[1] * dot(u, u) - u[1] * dot(v, v)) / d, (u[0] * dot(v, v) - v[0] * dot(u, u)) / d};
+    r = detail::padded(std::sqrt(dot(c, c)), rel, std::sqrt(std::max(dot(u, u), dot(v, v))));
+    centre = a + c;
+    return true;
+  }
+  struct probe {
+    point2 cc, n;
+    double r2, l;
+  };
+  probe prepare(const face& f) const {
+    const point2 &a = p[f[0]], &b = p[f[1]];
+    const double l = distance(a, b);
+    return {0.5 * (a + b), {-(b[1] - a[1]) / l, (b[0] - a[0]) / l}, 0.25 * l * l, l};
+  }
+  static double estimate(const probe& pr, const coord& q) {
+    const point2 d = q - pr.cc;
+    const double h = dot(d, pr.n);
+    return h > 0 ? (dot(d, d) - pr.r2) / (2 * h) : std::numeric_limits<double>::infinity();
+  }
+  static void seed(const probe& pr, coord& lo, coord& hi) {
+    for (std::size_t k = 0; k < 2; ++k) {
+      const double m = pr.cc[k] + 0.4 * pr.l * pr.n[k];
+      lo[k] = m - 0.5 * pr.l;
+      hi[k] = m + 0.5 * pr.l;
+    }
+  }
+};
+
+/// Triangles of a planar facet of a 3D PLC: 3D points, combinatorics in the projection that drops
+/// `axis`, circles tested exactly as equatorial balls (see in_coplanar_circle_perturbed).
+struct facet_kernel {
+  static constexpr std::size_t dim = 2, grid_dim = 2;
+  using face = std::array<vertex_id, 2>;
+  using coord = std::array<double, 2>;
+  std::span<const point3> p;
+  int axis = 2;
+
+  int side(const face& f, vertex_id y) const { return geometry::orient_projected(p[f[0]], p[f[1]], p[y], axis); }
+  bool beats(const face& f, vertex_id x, vertex_id y) const {
+    return geometry::in_coplanar_circle_perturbed(p[f[0]], p[f[1]], p[x], p[y], axis) > 0;
+  }
+  coord grid_coord(vertex_id v) const { return geometry::project(p[v], axis); }
+  bool ball(const face& f, vertex_id x, coord& centre, double& r) const {
+    const point3& a = p[f[0]];
+    const point3 u = p[f[1]] - a, v = p[x] - a;
+    const point3 n = cross(u, v);
+    const double nn = dot(n, n);
+    const double scale = dot(u, u) * dot(v, v);
+    const double rel = nn == 0 ? 1.0 : scale / nn * detail::eps * 64;
+    if (rel > detail::max_relative_error) return false;
+    const point3 c = (1.0 / (2 * nn)) * cross(dot(u, u) * v - dot(v, v) * u, n);
+    r = detail::padded(std::sqrt(dot(c, c)), rel, std::sqrt(std::max(dot(u, u), dot(v, v))));
+    centre = geometry::project(a + c, axis);
+    return true;
+  }
+  // The ranking hint works in the projection; projected circles are ellipses, so the hint is
+  // rougher than in the other kernels, but it only orders candidates.
+  struct probe {
+    point2 cc, n;
+    double r2, l;
+  };
+  probe prepare(const face& f) const {
+    const point2 a = geometry::project(p[f[0]], axis), b = geometry::project(p[f[1]], axis);
+    const double l = distance(a, b);
+    return {0.5 * (a + b), {-(b[1] - a[1]) / l, (b[0] - a[0]) / l}, 0.25 * l * l, l};
+  }
+  static double estimate(const probe& pr, const coord& q) {
+    const point2 d = q - pr.cc;
+    const double h = dot(d, pr.n);
+    return h > 0 ? (dot(d, d) - pr.r2) / (2 * h) : std::numeric_limits<double>::infinity();
+  }
+  static void seed(const probe& pr, coord& lo, coord& hi) {
+    for (std::size_t k = 0; k < 2; ++k) {
+      const double m = pr.cc[k] + 0.4 * pr.l * pr.n[k];
+      lo[k] = m - 0.5 * pr.l;
+      hi[k] = m + 0.5 * pr.l;
+    }
+  }
+};
+
+}  // namespace gsse::front

@@ -1,0 +1,212 @@
+#define BOOST_TEST_MODULE front_oracle
+#include <boost/test/unit_test.hpp>
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <set>
+
+#include "gsse/front/front_mesher.hpp"
+#include "gsse/front/gift_wrap.hpp"
+#include "gsse/geometry/predicates.hpp"
+
+using namespace gsse;
+using K = geometry::kernel;
+using tet = std::array<vertex_id, 4>;
+using tri = std::array<vertex_id, 3>;
+
+namespace {
+
+template <std::size_t N>
+std::set<std::array<vertex_id, N>> canonical(const std::vector<std::array<vertex_id, N>>& cells) {
+  std::set<std::array<vertex_id, N>> r;
+  for (auto c : cells) {
+    std::sort(c.begin(), c.end());
+    BOOST_TEST_REQUIRE(r.insert(c).second);  // no cell twice
+  }
+  return r;
+}
+
+std::set<tet> cgal_delaunay_3(const std::vector<point3>& p) {
+  using Vb = CGAL::Triangulation_vertex_base_with_info_3<vertex_id, K>;
+  using Tds = CGAL::Triangulation_data_structure_3<Vb>;
+  using DT = CGAL::Delaunay_triangulation_3<K, Tds>;
+  std::vector<std::pair<K::Point_3, vertex_id>> in;
+  for (vertex_id i = 0; i < p.size(); ++i) in.push_back({{p[i][0], p[i][1], p[i][2]}, i});
+  DT dt(in.begin(), in.end());
+  std::set<tet> r;
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+    tet t{c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()};
+    std::sort(t.begin(), t.end());
+    r.insert(t);
+  }
+  return r;
+}
+
+std::set<tri> cgal_delaunay_2(const std::vector<point2>& p) {
+  using Vb = CGAL::Triangulation_vertex_base_with_info_2<vertex_id, K>;
+  using Tds = CGAL::Triangulation_data_structure_2<Vb>;
+  using DT = CGAL::Delaunay_triangulation_2<K, Tds>;
+  std::vector<std::pair<K::Point_2, vertex_id>> in;
+  for (vertex_id i = 0; i < p.size(); ++i) in.push_back({{p[i][0], p[i][1]}, i});
+  DT dt(in.begin(), in.end());
+  std::set<tri> r;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    tri t{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};
+    std::sort(t.begin(), t.end());
+    r.insert(t);
+  }
+  return r;
+}
+
+/// Boundary triangles of the box [0,n]^3 whose lattice points are ids of `id`: every boundary
+/// square split along its perturbed-Delaunay diagonal, oriented towards the inside.
+std::vector<tri> lattice_box_boundary(const std::vector<point3>& p, int n, const std::function<vertex_id(int, int, int)>& id) {
+  std::vector<tri> out;
+  const point3 centre{n / 2.0, n / 2.0, n / 2.0};
+  auto add = [&](vertex_id a, vertex_id b, vertex_id c) {
+    if (geometry::orient3d(p[a], p[b], p[c], centre) < 0) std::swap(a, b);
+    out.push_back({a, b, c});
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side : {0, n})
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          auto at = [&](int u, int v) {
+            int c[3];
+            c[axis] = side;
+            c[(axis + 1) % 3] = u;
+            c[(axis + 2) % 3] = v;
+            return id(c[0], c[1], c[2]);
+          };
+          // square q0 q1 q2 q3 counter-clockwise in the projection dropping `axis`
+          const vertex_id q0 = at(i, j), q1 = at(i + 1, j), q2 = at(i + 1, j + 1), q3 = at(i, j + 1);
+          const bool diag02 = geometry::in_coplanar_circle_perturbed(p[q0], p[q1], p[q2], p[q3], axis) < 0;
+          if (diag02) {
+            add(q0, q1, q2);
+            add(q0, q2, q3);
+          } else {
+            add(q0, q1, q3);
+            add(q1, q2, q3);
+          }
+        }
+  return out;
+}
+
+void check_valid_tetrahedralization(const std::vector<point3>& p, const std::vector<tet>& cells, double volume) {
+  std::map<tri, int> faces;
+  double sum = 0;
+  for (const auto& c : cells) {
+    BOOST_TEST_REQUIRE(geometry::orient3d(p[c[0]], p[c[1]], p[c[2]], p[c[3]]) == 1);
+    const point3 u = p[c[1]] - p[c[0]], v = p[c[2]] - p[c[0]], w = p[c[3]] - p[c[0]];
+    sum += dot(u, cross(v, w));  // 6 x volume: an exact integer on a lattice
+    for (int i = 0; i < 4; ++i) {
+      tri f;
+      int m = 0;
+      for (int j = 0; j < 4; ++j)
+        if (j != i) f[m++] = c[j];
+      std::sort(f.begin(), f.end());
+      ++faces[f];
+    }
+  }
+  for (const auto& [f, k] : faces) BOOST_TEST_REQUIRE(k <= 2);
+  BOOST_TEST(sum == 6 * volume);
+  // non-strict empty sphere: no point strictly inside any circumsphere
+  auto grid = front::make_grid(p);
+  std::size_t violations = 0;
+  for (const auto& c : cells)
+    for (vertex_id q = 0; q < p.size(); ++q)
+      violations += geometry::in_sphere(p[c[0]], p[c[1]], p[c[2]], p[c[3]], p[q]) > 0;
+  BOOST_TEST(violations == 0u);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(random_points_in_cube_match_cgal) {
+  for (std::size_t n : {1000u, 10000u}) {
+    std::mt19937_64 rng(42 + n);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<point3> p;
+    for (int i = 0; i < 8; ++i) p.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+    for (std::size_t i = 0; i < n; ++i) p.push_back({u(rng), u(rng), u(rng)});
+    const auto boundary = lattice_box_boundary(p, 1, [](int x, int y, int z) { return vertex_id(x + 2 * y + 4 * z); });
+    BOOST_TEST(boundary.size() == 12u);
+    const auto grid = front::make_grid(p);
+    const auto cells = front::wrap(p, grid, boundary, "cube");
+    const auto ours = canonical(cells);
+    const auto theirs = cgal_delaunay_3(p);
+    BOOST_TEST(ours.size() == theirs.size());
+    BOOST_TEST((ours == theirs));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(lattice_in_cube_is_valid) {
+  const int n = 5;
+  std::vector<point3> p;
+  for (int z = 0; z <= n; ++z)
+    for (int y = 0; y <= n; ++y)
+      for (int x = 0; x <= n; ++x) p.push_back({double(x), double(y), double(z)});
+  auto id = [&](int x, int y, int z) { return vertex_id(x + (n + 1) * (y + (n + 1) * z)); };
+  const auto boundary = lattice_box_boundary(p, n, id);
+  const auto grid = front::make_grid(p);
+  const auto cells = front::wrap(p, grid, boundary, "lattice");
+  check_valid_tetrahedralization(p, cells, n * n * n);
+  // the shared perturbation makes the result CGAL's, even here where every sphere is a tie
+  BOOST_TEST((canonical(cells) == cgal_delaunay_3(p)));
+}
+
+BOOST_AUTO_TEST_CASE(random_points_in_square_match_cgal) {
+  for (std::size_t n : {1000u, 10000u}) {
+    std::mt19937_64 rng(7 + n);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<point2> p{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (std::size_t i = 0; i < n; ++i) p.push_back({u(rng), u(rng)});
+    const std::vector<std::array<vertex_id, 2>> boundary{{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+    const auto grid = front::make_grid(std::span<const point2>(p));
+    const auto cells = front::wrap(p, grid, boundary, "square");
+    BOOST_TEST((canonical(cells) == cgal_delaunay_2(p)));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(lattice_in_square_is_valid) {
+  const int n = 12;
+  std::vector<point2> p;
+  for (int y = 0; y <= n; ++y)
+    for (int x = 0; x <= n; ++x) p.push_back({double(x), double(y)});
+  auto id = [&](int x, int y) { return vertex_id(x + (n + 1) * y); };
+  std::vector<std::array<vertex_id, 2>> boundary;
+  for (int i = 0; i < n; ++i) {
+    boundary.push_back({id(i, 0), id(i + 1, 0)});
+    boundary.push_back({id(n, i), id(n, i + 1)});
+    boundary.push_back({id(i + 1, n), id(i, n)});
+    boundary.push_back({id(0, i + 1), id(0, i)});
+  }
+  const auto grid = front::make_grid(std::span<const point2>(p));
+  const auto cells = front::wrap(p, grid, boundary, "lattice2");
+  double area = 0;
+  std::size_t violations = 0;
+  for (const auto& c : cells) {
+    BOOST_TEST_REQUIRE(geometry::orient2d(p[c[0]], p[c[1]], p[c[2]]) == 1);
+    const point2 u = p[c[1]] - p[c[0]], v = p[c[2]] - p[c[0]];
+    area += (u[0] * v[1] - u[1] * v[0]) / 2;
+    for (vertex_id q = 0; q < p.size(); ++q) violations += geometry::in_circle(p[c[0]], p[c[1]], p[c[2]], p[q]) > 0;
+  }
+  BOOST_TEST(area == double(n * n));
+  BOOST_TEST(violations == 0u);
+  BOOST_TEST(cells.size() == std::size_t(2 * n * n));
+  BOOST_TEST((canonical(cells) == cgal_delaunay_2(p)));
+}
+
+BOOST_AUTO_TEST_CASE(missing_candidate_is_an_error) {
+  // an open "boundary" (one triangle facing an empty half-space) has no apex: a hard error
+  std::vector<point3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, -1}};
+  const auto grid = front::make_grid(p);
+  BOOST_CHECK_EXCEPTION(front::wrap(p, grid, {{0, 1, 2}}, "seg"), front::front_error, [](const auto& e) {
+    return std::string(e.what()).find("seg: no vertex on the inner side of face (1 at") != std::string::npos;
+  });
+}
