@@ -1,65 +1,157 @@
-// gsse-mesh: command-line front end. Reads a PLC and reports its segments.
+// gsse-mesh: PLC in, per-segment conforming Delaunay mesh out.
+#include <unistd.h>
+
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <exception>
-#include <iostream>
+#include <fstream>
 #include <string>
 #include <variant>
 
+#include "gsse/io/node_ele.hpp"
+#include "gsse/io/gmsh.hpp"
 #include "gsse/io/poly.hpp"
+#include "gsse/io/vtu.hpp"
+#include "gsse/pipeline/pipeline.hpp"
 
 namespace {
 
 void usage(std::FILE* to) {
   std::fputs(
-      "usage: gsse-mesh INPUT [--quiet]\n"
-      "  INPUT  TetGen .poly/.smesh (3D) or Triangle .poly (2D) piecewise linear complex\n"
-      "Prints the segments (regions) of the PLC.\n",
+      "usage: gsse-mesh INPUT [-o OUTPUT] [--size H] [--cloud POINTS.node] [--threads N] [--verify]\n"
+      "                 [--quiet] [--stats FILE.json] [--max-steiner N]\n"
+      "  INPUT    TetGen .poly/.smesh (3D) or Triangle .poly (2D)\n"
+      "  -o       output mesh: .vtu, .msh, or .node (writes .node/.ele/.face beside it)\n"
+      "  --size   target element size H (default: none, boundary conforming only)\n"
+      "  --cloud  extra interior points (.node); points outside every segment are dropped\n"
+      "  --verify check the mesh (valid, conforming, labelled, Delaunay); non-zero exit if not\n",
       to);
 }
 
+struct args {
+  std::string input, output, cloud, stats;
+  double size = 0;
+  unsigned threads = 1;
+  bool verify = false, quiet = false;
+  std::size_t max_steiner = 2'000'000;
+};
+
 template <std::size_t D>
-void report(const gsse::plc<D>& p) {
-  std::printf("%s: %zuD PLC, %zu points, %zu %s, %zu holes, %zu segments\n", p.source.c_str(), D, p.points.size(),
-              D == 3 ? p.facets.size() : p.edges.size(), D == 3 ? "facets" : "segments (edges)", p.holes.size(),
-              p.regions.size());
-  for (const auto& g : p.regions) {
-    std::printf("  segment %d %-16s region point (", g.number, g.name.c_str());
-    for (std::size_t k = 0; k < D; ++k) std::printf(k ? ", %g" : "%g", g.at[k]);
-    std::printf(")\n");
+int run(const gsse::plc<D>& p, const args& a) {
+  const bool tty = !a.quiet && isatty(2);
+  std::vector<gsse::point<D>> cloud;
+  if (!a.cloud.empty()) cloud = gsse::io::read_node<D>(a.cloud);
+  gsse::pipeline::options o;
+  o.size = a.size;
+  o.threads = a.threads;
+  o.conform.max_steiner = a.max_steiner;
+  if (tty) o.progress = [](const std::string& s) { std::fprintf(stderr, "\r\033[Kgsse-mesh: %s", s.c_str()); };
+  gsse::pipeline::report r;
+  auto d = gsse::pipeline::mesh(p, cloud, o, r);
+  if (tty) std::fprintf(stderr, "\r\033[K");
+  std::vector<std::string> problems;
+  if (a.verify) {
+    const auto t0 = std::chrono::steady_clock::now();
+    problems = gsse::pipeline::verify(d);
+    r.times.push_back({"verify", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});
   }
+  if (!a.output.empty() && problems.empty()) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string& out = a.output;
+    auto ends = [&](const char* e) { return out.size() >= std::strlen(e) && out.compare(out.size() - std::strlen(e), std::string::npos, e) == 0; };
+    if (ends(".vtu"))
+      gsse::io::write_vtu(d, out);
+    else if (ends(".msh"))
+      gsse::io::write_msh(d, out);
+    else if (ends(".node"))
+      gsse::io::write_node_ele(d, out.substr(0, out.size() - 5));
+    else
+      throw std::runtime_error(out + ": unknown output format (use .vtu, .msh or .node)");
+    r.times.push_back({"write", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});
+  }
+  if (!a.quiet) {
+    std::printf("%s: %zuD, %zu points (%zu volume, %zu dropped outside, %zu boundary Steiner), %zu segments\n",
+                p.source.c_str(), D, d.points().size(), r.volume_points, r.dropped_points, r.steiner, d.segments().size());
+    for (const auto& s : d.segments()) {
+      const auto& c = s.cell_data();
+      std::vector<gsse::vertex_id> used;
+      for (const auto& x : c) used.insert(used.end(), x.begin(), x.end());
+      std::sort(used.begin(), used.end());
+      used.erase(std::unique(used.begin(), used.end()), used.end());
+      std::printf("  segment %2d %-16s %8zu vertices %9zu %s\n", s.number(), s.name().c_str(), used.size(), c.size(),
+                  D == 3 ? "tetrahedra" : "triangles");
+    }
+    for (const auto& t : r.times) std::printf("  %-8s %8.3f s\n", t.stage.c_str(), t.seconds);
+    if (a.verify) std::printf("verify: %s\n", problems.empty() ? "PASS" : "FAIL");
+  }
+  for (const auto& s : problems) std::fprintf(stderr, "gsse-mesh: verify: %s\n", s.c_str());
+  if (!a.stats.empty()) {
+    std::ofstream js(a.stats);
+    js << "{\"points\": " << d.points().size() << ", \"segments\": [";
+    for (std::size_t k = 0; k < d.segments().size(); ++k)
+      js << (k ? ", " : "") << "{\"name\": \"" << d.segments()[k].name() << "\", \"number\": " << d.segments()[k].number()
+         << ", \"cells\": " << d.segments()[k].num_cells() << "}";
+    js << "], \"times\": {";
+    for (std::size_t k = 0; k < r.times.size(); ++k)
+      js << (k ? ", " : "") << "\"" << r.times[k].stage << "\": " << r.times[k].seconds;
+    js << "}, \"verified\": " << (a.verify ? (problems.empty() ? "true" : "false") : "null") << "}\n";
+  }
+  return problems.empty() ? 0 : 3;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string input;
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) {
-      usage(stdout);
-      return 0;
+  args a;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string s = argv[i];
+      auto value = [&]() -> std::string {
+        if (i + 1 >= argc) throw std::invalid_argument("option " + s + " needs a value");
+        return argv[++i];
+      };
+      if (s == "-h" || s == "--help") {
+        usage(stdout);
+        return 0;
+      } else if (s == "-o") {
+        a.output = value();
+      } else if (s == "--size") {
+        a.size = std::stod(value());
+        if (!(a.size > 0)) throw std::invalid_argument("--size must be positive");
+      } else if (s == "--cloud") {
+        a.cloud = value();
+      } else if (s == "--threads") {
+        a.threads = static_cast<unsigned>(std::stoul(value()));
+      } else if (s == "--stats") {
+        a.stats = value();
+      } else if (s == "--max-steiner") {
+        a.max_steiner = std::stoul(value());
+      } else if (s == "--verify") {
+        a.verify = true;
+      } else if (s == "--quiet") {
+        a.quiet = true;
+      } else if (!s.empty() && s[0] == '-') {
+        throw std::invalid_argument("unknown option '" + s + "'");
+      } else if (a.input.empty()) {
+        a.input = s;
+      } else {
+        throw std::invalid_argument("more than one input given");
+      }
     }
-    if (!std::strcmp(argv[i], "--quiet")) continue;
-    if (argv[i][0] == '-') {
-      std::fprintf(stderr, "gsse-mesh: unknown option '%s'\n", argv[i]);
-      usage(stderr);
-      return 2;
-    }
-    if (!input.empty()) {
-      std::fprintf(stderr, "gsse-mesh: more than one input given ('%s', '%s')\n", input.c_str(), argv[i]);
-      return 2;
-    }
-    input = argv[i];
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "gsse-mesh: %s\n", e.what());
+    usage(stderr);
+    return 2;
   }
-  if (input.empty()) {
+  if (a.input.empty()) {
     usage(stderr);
     return 2;
   }
   try {
-    std::visit([](const auto& p) { report(p); }, gsse::io::read_plc(input));
+    return std::visit([&](const auto& p) { return run(p, a); }, gsse::io::read_plc(a.input));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "gsse-mesh: error: %s\n", e.what());
     return 1;
   }
-  return 0;
 }

@@ -2,48 +2,20 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <numeric>
-#include <sstream>
 
+#include "gsse/io/sidecar.hpp"
+#include "gsse/io/surface.hpp"
 #include "gsse/io/text_reader.hpp"
+#include "node_block.hpp"
 
 namespace gsse::io {
 namespace {
 
-std::string base_of(const std::string& path) {
-  std::filesystem::path p(path);
-  return (p.parent_path() / p.stem()).string();
-}
 std::string extension_of(const std::string& path) {
   auto e = std::filesystem::path(path).extension().string();
   std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return e;
-}
-
-// Reads the node block (header already positioned at the count line). Returns the index base.
-template <std::size_t D>
-long read_node_block(text_reader& r, long count, long attributes, long markers, std::vector<point<D>>& pts,
-                     std::vector<int>& point_markers, std::vector<std::size_t>& lines) {
-  long base = 0;
-  pts.reserve(static_cast<std::size_t>(count));
-  for (long i = 0; i < count; ++i) {
-    r.require_line("point " + std::to_string(i + 1) + " of " + std::to_string(count));
-    const long id = r.integer("point number");
-    if (i == 0) {
-      if (id != 0 && id != 1) r.fail("first point number must be 0 or 1, got " + std::to_string(id));
-      base = id;
-    } else if (id != base + i) {
-      r.fail("point number " + std::to_string(id) + " out of sequence, expected " + std::to_string(base + i));
-    }
-    point<D> p;
-    for (std::size_t k = 0; k < D; ++k) p[k] = r.real(std::string(1, "xyz"[k]) + " coordinate");
-    for (long a = 0; a < attributes; ++a) (void)r.real("point attribute");
-    point_markers.push_back(markers ? static_cast<int>(r.optional_integer("boundary marker", 0)) : 0);
-    pts.push_back(p);
-    lines.push_back(r.line());
-  }
-  return base;
 }
 
 template <std::size_t D>
@@ -56,7 +28,7 @@ long read_points(text_reader& r, const std::string& path, plc<D>& out, std::vect
   const long attributes = r.optional_integer("number of attributes", 0);
   const long markers = r.optional_integer("number of boundary markers", 0);
   if (attributes < 0 || markers < 0 || markers > 1) r.fail("invalid attribute or marker count");
-  if (n > 0) return read_node_block<D>(r, n, attributes, markers, out.points, out.point_markers, lines);
+  if (n > 0) return detail::read_node_block<D>(r, n, attributes, markers, out.points, out.point_markers, lines);
   // points in BASE.node
   const std::string node = base_of(path) + ".node";
   text_reader nr(node);
@@ -66,7 +38,7 @@ long read_points(text_reader& r, const std::string& path, plc<D>& out, std::vect
   if (d2 != static_cast<long>(D)) nr.fail("dimension " + std::to_string(d2) + " where " + std::to_string(D) + " was expected");
   const long a2 = nr.optional_integer("number of attributes", 0);
   const long m2 = nr.optional_integer("number of boundary markers", 0);
-  return read_node_block<D>(nr, m, a2, m2, out.points, out.point_markers, lines);
+  return detail::read_node_block<D>(nr, m, a2, m2, out.points, out.point_markers, lines);
 }
 
 vertex_id vertex_ref(text_reader& r, long base, std::size_t npoints, const char* what) {
@@ -103,6 +75,37 @@ void read_holes_and_regions(text_reader& r, plc<D>& out, bool triangle) {
 }
 
 }  // namespace
+
+namespace detail {
+template <std::size_t D>
+long read_node_block(text_reader& r, long count, long attributes, long markers, std::vector<point<D>>& pts,
+                     std::vector<int>& point_markers, std::vector<std::size_t>& lines) {
+  long base = 0;
+  // a point takes at least one line of a few bytes: never reserve more than the file can hold
+  pts.reserve(std::min(static_cast<std::size_t>(count), r.bytes_left() / 2 + 1));
+  for (long i = 0; i < count; ++i) {
+    r.require_line("point " + std::to_string(i + 1) + " of " + std::to_string(count));
+    const long id = r.integer("point number");
+    if (i == 0) {
+      if (id != 0 && id != 1) r.fail("first point number must be 0 or 1, got " + std::to_string(id));
+      base = id;
+    } else if (id != base + i) {
+      r.fail("point number " + std::to_string(id) + " out of sequence, expected " + std::to_string(base + i));
+    }
+    point<D> p;
+    for (std::size_t k = 0; k < D; ++k) p[k] = r.real(std::string(1, "xyz"[k]) + " coordinate");
+    for (long a = 0; a < attributes; ++a) (void)r.real("point attribute");
+    point_markers.push_back(markers ? static_cast<int>(r.optional_integer("boundary marker", 0)) : 0);
+    pts.push_back(p);
+    lines.push_back(r.line());
+  }
+  return base;
+}
+template long read_node_block<2>(text_reader&, long, long, long, std::vector<point<2>>&, std::vector<int>&,
+                                 std::vector<std::size_t>&);
+template long read_node_block<3>(text_reader&, long, long, long, std::vector<point<3>>&, std::vector<int>&,
+                                 std::vector<std::size_t>&);
+}  // namespace detail
 
 template <std::size_t D>
 void check_points(const std::string& file, const std::vector<point<D>>& pts, const std::vector<std::size_t>& lines) {
@@ -205,7 +208,7 @@ std::vector<point<D>> read_node(const std::string& path) {
   const long attributes = r.optional_integer("number of attributes", 0);
   const long markers = r.optional_integer("number of boundary markers", 0);
   if (attributes < 0 || markers < 0 || markers > 1) r.fail("invalid attribute or marker count");
-  read_node_block<D>(r, n, attributes, markers, tmp.points, tmp.point_markers, lines);
+  detail::read_node_block<D>(r, n, attributes, markers, tmp.points, tmp.point_markers, lines);
   check_points<D>(path, tmp.points, lines);
   return tmp.points;
 }
@@ -224,28 +227,11 @@ int poly_dimension(const std::string& path) {
 
 template <std::size_t D>
 void assign_region_names(plc<D>& p, const std::string& path) {
-  std::vector<std::string> names;
-  std::ifstream in(base_of(path) + ".json");
-  if (in) {
-    std::stringstream ss;
-    ss << in.rdbuf();
-    const std::string s = ss.str();
-    if (auto k = s.find("\"segments\""); k != std::string::npos) {
-      auto open = s.find('[', k), close = s.find(']', k);
-      for (auto q = s.find('"', open); open != std::string::npos && q < close; q = s.find('"', q + 1)) {
-        auto e = s.find('"', q + 1);
-        if (e == std::string::npos || e > close) break;
-        names.push_back(s.substr(q + 1, e - q - 1));
-        q = e;
-      }
-    }
-  }
+  const segment_table t = read_sidecar(base_of(path) + ".json");
   for (auto& g : p.regions) {
     if (!g.name.empty()) continue;
-    if (g.number >= 1 && static_cast<std::size_t>(g.number) <= names.size())
-      g.name = names[static_cast<std::size_t>(g.number - 1)];
-    else
-      g.name = "region_" + std::to_string(g.number);
+    g.name = t.name_of(g.number);
+    if (g.name.empty()) g.name = "region_" + std::to_string(g.number);
   }
 }
 template void assign_region_names<2>(plc<2>&, const std::string&);
@@ -258,7 +244,9 @@ any_plc read_plc(const std::string& path) {
     if (poly_dimension(path) == 2) return read_triangle_poly(path);
     return read_tetgen_poly(path);
   }
-  throw io_error::whole(path, "unsupported input format '" + ext + "' (expected .poly or .smesh)");
+  if (ext == ".off") return read_off(path);
+  if (ext == ".stl") return read_stl(path);
+  throw io_error::whole(path, "unsupported input format '" + ext + "' (expected .poly, .smesh, .off or .stl)");
 }
 
 }  // namespace gsse::io

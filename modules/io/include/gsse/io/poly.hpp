@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "gsse/container/plc.hpp"
+#include "gsse/io/error.hpp"
 
 namespace gsse::io {
 

@@ -37,6 +37,8 @@ class text_reader {
 
   [[noreturn]] void fail(std::string_view what) const;
   const std::string& name() const { return name_; }
+  /// Bytes not yet consumed: bounds every count before anything is allocated for it.
+  std::size_t bytes_left() const { return at_ < data_.size() ? data_.size() - at_ : 0; }
   std::size_t line() const { return line_; }
 
  private:

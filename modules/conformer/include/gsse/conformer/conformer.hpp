@@ -1,0 +1,57 @@
+#pragma once
+// Surface conformer: refines the boundary of a PLC (plus volume points) until no subsegment has a
+// vertex in its diametral ball and no subfacet has a vertex in its equatorial ball. A vertex on
+// such a sphere counts as encroaching unless the element is a face of the perturbed Delaunay
+// triangulation of its own vertices and all vertices on that sphere (see encroachment.hpp), so the
+// conformed boundary is a subcomplex of the project's Delaunay triangulation of all vertices.
+#include <array>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gsse/container/plc.hpp"
+#include "gsse/rules/rule_set.hpp"
+
+namespace gsse::conformer {
+
+class conform_error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct options {
+  double size = 0;                   // > 0: also split boundary elements longer than this
+  std::size_t max_steiner = 2'000'000;  // cap on inserted boundary points: a runaway becomes an error
+  const rules::rule_set* rules = nullptr;  // nullptr: the embedded default conformer rules
+};
+
+/// Where a vertex lies: on a PLC vertex, on a PLC edge, inside a facet (3D), or free (volume).
+struct home {
+  enum kind_t : unsigned char { vertex, edge, facet, free } kind = free;
+  std::uint32_t id = 0;
+};
+
+template <std::size_t D>
+struct boundary {
+  std::vector<point<D>> points;                   // PLC points, volume points, then Steiner points
+  std::vector<home> homes;                        // per point
+  std::vector<std::array<vertex_id, D>> faces;    // subsegments (2D) or subfacets (3D)
+  std::vector<std::uint32_t> face_source;         // PLC edge (2D) or facet (3D) of each face
+  std::size_t plc_points = 0, volume_points = 0;  // the first points are the PLC's, then volume ones
+  std::size_t steiner = 0;                        // boundary points inserted
+  std::size_t rounds = 0;
+};
+
+/// Conforms the PLC's boundary with respect to itself and `volume` points (which are kept as
+/// given; points on the boundary become boundary vertices). Throws conform_error on invalid
+/// input (degenerate elements, unsupported facet shapes) or when max_steiner is exceeded.
+boundary<2> conform(const plc<2>& p, const std::vector<point2>& volume, const options& o = {});
+boundary<3> conform(const plc<3>& p, const std::vector<point3>& volume, const options& o = {});
+
+/// Post-check: every encroached element of `b`, as (face index, encroaching vertex). Empty means
+/// the boundary is conforming. Decided with exact predicates and the tie rule above.
+std::vector<std::pair<std::size_t, vertex_id>> encroached(const boundary<2>& b);
+std::vector<std::pair<std::size_t, vertex_id>> encroached(const boundary<3>& b);
+
+}  // namespace gsse::conformer

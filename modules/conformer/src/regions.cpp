@@ -1,0 +1,335 @@
+#include "gsse/conformer/regions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+
+#include "gsse/geometry/predicates.hpp"
+
+namespace gsse::conformer {
+namespace {
+
+struct union_find {
+  std::vector<std::size_t> up;
+  explicit union_find(std::size_t n) : up(n) { std::iota(up.begin(), up.end(), 0); }
+  std::size_t find(std::size_t x) {
+    while (up[x] != x) x = up[x] = up[up[x]];
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b) {
+    a = find(a), b = find(b);
+    if (a != b) up[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+// Ray directions tried in turn (fixed, "irrational" so that axis-aligned input rarely meets a
+// ray exactly in an edge or vertex).
+constexpr std::array<std::array<double, 3>, 8> tilts{{{0.0123, 0.0271, 0.0389},
+                                                      {-0.0331, 0.0217, 0.0113},
+                                                      {0.0411, -0.0193, 0.0277},
+                                                      {0.0157, 0.0353, -0.0241},
+                                                      {0.6123, 0.5271, 0.4389},
+                                                      {-0.5331, 0.7217, 0.3113},
+                                                      {0.3411, -0.6193, 0.7277},
+                                                      {0.4157, 0.2353, -0.8241}}};
+
+template <std::size_t D>
+double diameter(const std::vector<point<D>>& p) {
+  point<D> lo = p[0], hi = p[0];
+  for (const auto& q : p)
+    for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+  return distance(lo, hi) + 1;
+}
+
+/// Casts a ray from o towards o + dir. Returns the nearest hit (face, side facing o), or
+/// {-1,0} for no hit; sets `degenerate` if the ray touched an edge or vertex of a face or o lies
+/// on a face plane inside a face.
+template <std::size_t D>
+std::pair<long, int> cast(const boundary<D>& b, const point<D>& o, const point<D>& dir, long skip, bool& degenerate,
+                          bool& on_face) {
+  const auto& p = b.points;
+  const point<D> far = o + dir;
+  long best = -1;
+  int best_side = 0;
+  double best_t = std::numeric_limits<double>::infinity();
+  degenerate = on_face = false;
+  for (std::size_t f = 0; f < b.faces.size(); ++f) {
+    if (static_cast<long>(f) == skip) continue;
+    const auto& F = b.faces[f];
+    int so, sf;
+    if constexpr (D == 2) {
+      so = geometry::orient2d(p[F[0]], p[F[1]], o);
+      sf = geometry::orient2d(p[F[0]], p[F[1]], far);
+    } else {
+      so = geometry::orient3d(p[F[0]], p[F[1]], p[F[2]], o);
+      sf = geometry::orient3d(p[F[0]], p[F[1]], p[F[2]], far);
+    }
+    if (so == sf && so != 0) continue;  // both on one side
+    // does the segment o-far pass through the face's interior?
+    bool inside = true, touch = false;
+    if constexpr (D == 2) {
+      const int s0 = geometry::orient2d(o, far, p[F[0]]), s1 = geometry::orient2d(o, far, p[F[1]]);
+      if (s0 == 0 || s1 == 0) touch = s0 != s1 || s0 != 0;
+      inside = s0 != s1;
+      if (s0 == 0 && s1 == 0) inside = false, touch = true;  // collinear with the ray
+    } else {
+      int s[3];
+      for (int k = 0; k < 3; ++k) s[k] = geometry::orient3d(o, far, p[F[static_cast<std::size_t>(k)]], p[F[static_cast<std::size_t>((k + 1) % 3)]]);
+      const bool pos = s[0] >= 0 && s[1] >= 0 && s[2] >= 0, neg = s[0] <= 0 && s[1] <= 0 && s[2] <= 0;
+      inside = pos || neg;
+      touch = inside && (s[0] == 0 || s[1] == 0 || s[2] == 0);
+    }
+    if (!inside) continue;
+    if (so == 0) {
+      on_face = true;  // o on the face (or in its plane inside the crossing): no side to tell
+      return {-1, 0};
+    }
+    if (sf == 0 || touch) {
+      degenerate = true;
+      return {-1, 0};
+    }
+    // parameter of the crossing along the ray, in double: ranking only
+    double t;
+    if constexpr (D == 2) {
+      const point2 a = p[F[0]], e = p[F[1]] - a, d = far - o;
+      const double den = d[0] * e[1] - d[1] * e[0];
+      t = ((a[0] - o[0]) * e[1] - (a[1] - o[1]) * e[0]) / den;
+    } else {
+      const point3 n = cross(p[F[1]] - p[F[0]], p[F[2]] - p[F[0]]);
+      t = dot(p[F[0]] - o, n) / dot(far - o, n);
+    }
+    if (t < best_t) {
+      best_t = t;
+      best = static_cast<long>(f);
+      best_side = so > 0 ? 0 : 1;
+    }
+  }
+  return {best, best_side};
+}
+
+template <std::size_t D>
+point<D> tilt_dir(const point<D>& base, std::size_t k, double len) {
+  point<D> d{};
+  for (std::size_t i = 0; i < D; ++i) d[i] = base[i] + tilts[k][i];
+  double n = std::sqrt(dot(d, d));
+  if (n == 0) n = 1;
+  return (len / n) * d;
+}
+
+template <std::size_t D>
+point<D> face_normal(const boundary<D>& b, std::size_t f) {
+  const auto& p = b.points;
+  const auto& F = b.faces[f];
+  if constexpr (D == 2) {
+    const point2 e = p[F[1]] - p[F[0]];
+    return {-e[1], e[0]};
+  } else {
+    return cross(p[F[1]] - p[F[0]], p[F[2]] - p[F[0]]);
+  }
+}
+
+template <std::size_t D>
+point<D> face_centre(const boundary<D>& b, std::size_t f) {
+  point<D> c{};
+  for (auto v : b.faces[f]) c = c + (1.0 / D) * b.points[v];
+  return c;
+}
+
+/// Hit side (2*face + s) of a ray from o, trying the fixed directions in turn around `base`.
+template <std::size_t D>
+long first_side(const boundary<D>& b, const point<D>& o, const point<D>& base, long skip, double len,
+                const std::string& what) {
+  for (std::size_t k = 0; k < tilts.size(); ++k) {
+    bool degenerate, on_face;
+    auto [f, s] = cast(b, o, tilt_dir(base, k, len), skip, degenerate, on_face);
+    if (on_face) throw conform_error(what + " lies on the boundary");
+    if (degenerate) continue;
+    return f < 0 ? -1 : 2 * f + s;
+  }
+  throw conform_error(what + ": every ray met the boundary in an edge or vertex");
+}
+
+template <std::size_t D>
+labelling label_impl(const boundary<D>& b, const plc<D>& p) {
+  const auto& pts = b.points;
+  const std::size_t F = b.faces.size();
+  union_find shells(2 * F);
+  // gather faces around each (D-2)-simplex: edges in 3D, vertices in 2D
+  if constexpr (D == 3) {
+    std::map<std::pair<vertex_id, vertex_id>, std::vector<std::uint32_t>> around;
+    for (std::uint32_t f = 0; f < F; ++f)
+      for (int k = 0; k < 3; ++k) {
+        auto u = b.faces[f][static_cast<std::size_t>(k)], v = b.faces[f][static_cast<std::size_t>((k + 1) % 3)];
+        around[std::minmax(u, v)].push_back(f);
+      }
+    for (auto& [e, fs] : around) {
+      const vertex_id u = e.first, v = e.second;
+      auto third = [&](std::uint32_t f) {
+        for (auto w : b.faces[f])
+          if (w != u && w != v) return w;
+        return u;
+      };
+      if (fs.size() == 1)
+        throw conform_error(p.source + ": the boundary is not closed: edge (" + std::to_string(u + 1) + ", " +
+                            std::to_string(v + 1) + ") bounds only one face");
+      const vertex_id w0 = third(fs[0]);
+      const int axis = geometry::dominant_axis(pts[u], pts[v], pts[w0]);
+      const int ref = geometry::orient_projected(pts[u], pts[v], pts[w0], axis);
+      auto cls = [&](std::uint32_t f) {
+        const vertex_id w = third(f);
+        const int o = geometry::orient3d(pts[u], pts[v], pts[w0], pts[w]);
+        if (o > 0) return 1;
+        if (o < 0) return 3;
+        return geometry::orient_projected(pts[u], pts[v], pts[w], axis) == ref ? 0 : 2;
+      };
+      std::sort(fs.begin(), fs.end(), [&](std::uint32_t a, std::uint32_t c) {
+        const int ca = cls(a), cc = cls(c);
+        if (ca != cc) return ca < cc;
+        if (a == c) return false;
+        return geometry::orient3d(pts[u], pts[v], pts[third(a)], pts[third(c)]) > 0;
+      });
+      for (std::size_t i = 0; i < fs.size(); ++i) {
+        const std::uint32_t a = fs[i], c = fs[(i + 1) % fs.size()];
+        const bool same_half_plane =
+            i + 1 < fs.size() && cls(a) == cls(c) &&
+            (cls(a) == 0 || cls(a) == 2 || geometry::orient3d(pts[u], pts[v], pts[third(a)], pts[third(c)]) == 0);
+        if (same_half_plane)
+          throw conform_error(p.source + ": boundary faces overlap at edge (" + std::to_string(u + 1) + ", " +
+                              std::to_string(v + 1) + ") (facets " + std::to_string(b.face_source[a] + 1) + " and " +
+                              std::to_string(b.face_source[c] + 1) + ")");
+        // + side of face (u,v,w) in this vertex order faces counter-clockwise around u->v
+        auto ccw_side = [&](std::uint32_t f) {
+          const auto& T = b.faces[f];
+          bool forward = false;
+          for (int k = 0; k < 3; ++k) forward |= T[static_cast<std::size_t>(k)] == u && T[static_cast<std::size_t>((k + 1) % 3)] == v;
+          return 2 * static_cast<std::size_t>(f) + (forward ? 0 : 1);
+        };
+        shells.unite(ccw_side(a), ccw_side(c) ^ 1u);
+      }
+    }
+  } else {
+    std::map<vertex_id, std::vector<std::uint32_t>> around;
+    for (std::uint32_t f = 0; f < F; ++f)
+      for (auto v : b.faces[f]) around[v].push_back(f);
+    for (auto& [v, fs] : around) {
+      auto other = [&](std::uint32_t f) { return b.faces[f][0] == v ? b.faces[f][1] : b.faces[f][0]; };
+      if (fs.size() == 1)
+        throw conform_error(p.source + ": the boundary is not closed: vertex " + std::to_string(v + 1) +
+                            " ends only one segment");
+      const vertex_id w0 = other(fs[0]);
+      const bool ref_side = lex_less(pts[v], pts[w0]);
+      auto cls = [&](std::uint32_t f) {
+        const vertex_id w = other(f);
+        const int o = geometry::orient2d(pts[v], pts[w0], pts[w]);
+        if (o > 0) return 1;
+        if (o < 0) return 3;
+        return lex_less(pts[v], pts[w]) == ref_side ? 0 : 2;
+      };
+      std::sort(fs.begin(), fs.end(), [&](std::uint32_t a, std::uint32_t c) {
+        const int ca = cls(a), cc = cls(c);
+        if (ca != cc) return ca < cc;
+        if (a == c) return false;
+        return geometry::orient2d(pts[v], pts[other(a)], pts[other(c)]) > 0;
+      });
+      for (std::size_t i = 0; i < fs.size(); ++i) {
+        const std::uint32_t a = fs[i], c = fs[(i + 1) % fs.size()];
+        if (a != c && geometry::orient2d(pts[v], pts[other(a)], pts[other(c)]) == 0 &&
+            lex_less(pts[v], pts[other(a)]) == lex_less(pts[v], pts[other(c)]))
+          throw conform_error(p.source + ": boundary segments overlap at vertex " + std::to_string(v + 1));
+        // the left side of the ray v->w faces counter-clockwise around v
+        auto ccw_side = [&](std::uint32_t f) { return 2 * static_cast<std::size_t>(f) + (b.faces[f][0] == v ? 0 : 1); };
+        shells.unite(ccw_side(a), ccw_side(c) ^ 1u);
+      }
+    }
+  }
+  // cells: link each shell to the shell its inward ray hits first
+  const double len = 4 * diameter(pts);
+  union_find cells(2 * F + 1);
+  const std::size_t unbounded = 2 * F;
+  std::vector<char> done(2 * F, 0);
+  for (std::size_t s = 0; s < 2 * F; ++s) {
+    const std::size_t root = shells.find(s);
+    if (done[root]) continue;
+    done[root] = 1;
+    const std::size_t f = s / 2;
+    point<D> n = face_normal(b, f);
+    if (s % 2) n = -1.0 * n;
+    const long hit = first_side(b, face_centre(b, f), (1.0 / std::sqrt(dot(n, n))) * n, static_cast<long>(f), len,
+                                p.source + ": probe of face " + std::to_string(f + 1));
+    cells.unite(root, hit < 0 ? unbounded : shells.find(static_cast<std::size_t>(hit)));
+  }
+  // region and hole points
+  labelling out;
+  std::map<std::size_t, int> cell_region;  // cell root -> region index, or exterior for holes
+  for (std::size_t r = 0; r < p.regions.size(); ++r) {
+    const auto& g = p.regions[r];
+    const std::string what = p.source + ": region point " + std::to_string(r + 1) + " (segment " + std::to_string(g.number) + ")";
+    const long hit = first_side(b, g.at, point<D>{}, -1, len, what);
+    if (hit < 0 || cells.find(shells.find(static_cast<std::size_t>(hit))) == cells.find(unbounded))
+      throw conform_error(what + " lies outside the domain");
+    const std::size_t cell = cells.find(shells.find(static_cast<std::size_t>(hit)));
+    int idx = -1;
+    for (std::size_t k = 0; k < out.regions.size(); ++k)
+      if (out.regions[k].number == g.number) idx = static_cast<int>(k);
+    if (idx < 0) {
+      out.regions.push_back({g.number, g.name});
+      idx = static_cast<int>(out.regions.size() - 1);
+    }
+    auto [it, fresh] = cell_region.try_emplace(cell, idx);
+    if (!fresh && it->second != idx)
+      throw conform_error(what + " shares its region with segment " +
+                          (it->second < 0 ? std::string("hole") : std::to_string(out.regions[static_cast<std::size_t>(it->second)].number)));
+  }
+  for (std::size_t h = 0; h < p.holes.size(); ++h) {
+    const std::string what = p.source + ": hole point " + std::to_string(h + 1);
+    const long hit = first_side(b, p.holes[h], point<D>{}, -1, len, what);
+    if (hit < 0) continue;  // outside anyway
+    cell_region[cells.find(shells.find(static_cast<std::size_t>(hit)))] = exterior;
+  }
+  out.side.assign(F, {exterior, exterior});
+  for (std::size_t s = 0; s < 2 * F; ++s) {
+    const std::size_t cell = cells.find(shells.find(s));
+    if (cell == cells.find(unbounded)) continue;
+    auto it = cell_region.find(cell);
+    if (it == cell_region.end()) {
+      if (!p.regions.empty())
+        throw conform_error(p.source + ": a region bounded by facet " + std::to_string(b.face_source[s / 2] + 1) +
+                            " has no region point (add one, or a hole point)");
+      out.regions.push_back({static_cast<int>(out.regions.size() + 1), "region_" + std::to_string(out.regions.size() + 1)});
+      it = cell_region.emplace(cell, static_cast<int>(out.regions.size() - 1)).first;
+    }
+    out.side[s / 2][s % 2] = it->second;
+  }
+  return out;
+}
+
+template <std::size_t D>
+std::vector<int> locate_impl(const boundary<D>& b, const labelling& l, const std::vector<point<D>>& q) {
+  std::vector<int> r(q.size(), exterior);
+  const double len = 4 * diameter(b.points);
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    long hit;
+    try {
+      hit = first_side(b, q[i], point<D>{}, -1, len, "point");
+    } catch (const conform_error&) {
+      continue;  // on the boundary: not a volume point
+    }
+    if (hit >= 0) r[i] = l.side[static_cast<std::size_t>(hit) / 2][static_cast<std::size_t>(hit) % 2];
+  }
+  return r;
+}
+
+}  // namespace
+
+labelling label(const boundary<2>& b, const plc<2>& p) { return label_impl(b, p); }
+labelling label(const boundary<3>& b, const plc<3>& p) { return label_impl(b, p); }
+std::vector<int> locate(const boundary<2>& b, const labelling& l, const std::vector<point2>& q) {
+  return locate_impl(b, l, q);
+}
+std::vector<int> locate(const boundary<3>& b, const labelling& l, const std::vector<point3>& q) {
+  return locate_impl(b, l, q);
+}
+
+}  // namespace gsse::conformer

@@ -1,0 +1,113 @@
+#pragma once
+// Internal: checks a domain before it is written, and finds its boundary and interface facets
+// without requiring finalize() (writers take const domains that may not be finalized).
+#include <algorithm>
+#include <array>
+#include <cstdlib>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "gsse/container/domain.hpp"
+#include "gsse/io/error.hpp"
+
+namespace gsse::io::detail {
+
+template <std::size_t D>
+void check_domain(const domain<D>& d, const std::string& file) {
+  std::unordered_set<int> numbers;
+  const auto n = d.points().size();
+  for (const auto& s : d.segments()) {
+    if (!numbers.insert(s.number()).second)
+      throw io_error::whole(file, "two segments have number " + std::to_string(s.number()) +
+                                      "; segment numbers must be unique to be written");
+    for (const auto& c : s.cell_data())
+      for (auto v : c)
+        if (v >= n)
+          throw io_error::whole(file, "segment '" + s.name() + "' refers to vertex " + std::to_string(v) + " of " +
+                                          std::to_string(n) + " points");
+  }
+}
+
+struct key_hash {
+  template <std::size_t N>
+  std::size_t operator()(const std::array<vertex_id, N>& k) const {
+    std::size_t h = 1469598103934665603ull;
+    for (auto v : k) h = (h ^ v) * 1099511628211ull;
+    return h;
+  }
+};
+
+template <std::size_t D>
+struct outer_facet {
+  std::array<vertex_id, D> vertices;  // oriented into segment `first`
+  std::size_t first;                  // segment index (lower number for an interface)
+  long second;                        // segment index on the other side, -1 outside
+};
+
+/// Every facet on the boundary of a segment, once: boundary facets of the domain, and interface
+/// facets oriented into the segment of lower number. Deterministic order (segments, cells, facets).
+template <std::size_t D>
+std::vector<outer_facet<D>> outer_facets(const domain<D>& d, const std::string& file) {
+  struct use {
+    std::size_t seg, cell;
+    int index;
+    int count = 0;
+    std::size_t other_seg = 0;
+  };
+  auto facet_of = [](const auto& c, int i) {
+    std::array<vertex_id, D> f;
+    for (std::size_t j = 0; j < D; ++j)
+      f[j] = c[static_cast<std::size_t>(reference_simplex<D>::facet_vertices[static_cast<std::size_t>(i)][j])];
+    return f;
+  };
+  std::unordered_map<std::array<vertex_id, D>, use, key_hash> map;
+  const auto& segs = d.segments();
+  for (std::size_t k = 0; k < segs.size(); ++k) {
+    const auto cells = segs[k].cell_data();
+    for (std::size_t c = 0; c < cells.size(); ++c)
+      for (int i = 0; i <= static_cast<int>(D); ++i) {
+        auto key = facet_of(cells[c], i);
+        std::sort(key.begin(), key.end());
+        auto [it, fresh] = map.try_emplace(key, use{k, c, i});
+        auto& u = it->second;
+        if (++u.count > 2) throw io_error::whole(file, "a facet is shared by more than two cells");
+        if (!fresh) u.other_seg = k;
+      }
+  }
+  std::vector<outer_facet<D>> r;
+  for (std::size_t k = 0; k < segs.size(); ++k) {
+    const auto cells = segs[k].cell_data();
+    for (std::size_t c = 0; c < cells.size(); ++c)
+      for (int i = 0; i <= static_cast<int>(D); ++i) {
+        auto f = facet_of(cells[c], i);
+        auto key = f;
+        std::sort(key.begin(), key.end());
+        const auto& u = map.at(key);
+        if (u.count == 1) {
+          r.push_back({f, k, -1});
+        } else if (u.other_seg != u.seg) {
+          // emit from the side of the lower number (ties: earlier segment)
+          const std::size_t other = k == u.seg ? u.other_seg : u.seg;
+          const auto a = segs[k].number(), b = segs[other].number();
+          if (a < b || (a == b && k < other)) r.push_back({f, k, static_cast<long>(other)});
+        }
+      }
+  }
+  return r;
+}
+
+/// finalize() of every segment; a facet shared by more than two cells becomes an io_error.
+template <std::size_t D>
+void finalize_all(domain<D>& d, const std::string& file) {
+  for (auto& s : d.segments()) {
+    try {
+      s.finalize();
+    } catch (const std::runtime_error& e) {
+      throw io_error::whole(file, "segment '" + s.name() + "' is not a valid mesh: " + e.what());
+    }
+  }
+}
+
+}  // namespace gsse::io::detail

@@ -1,0 +1,184 @@
+#include "gsse/io/node_ele.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <unordered_map>
+
+#include "facets.hpp"
+#include "gsse/io/atomic_file.hpp"
+#include "gsse/io/poly.hpp"
+#include "gsse/io/sidecar.hpp"
+#include "gsse/io/text_reader.hpp"
+#include "node_block.hpp"
+#include "number_format.hpp"
+
+namespace gsse::io {
+namespace {
+
+std::string strip_mesh_extension(const std::string& path) {
+  const auto e = std::filesystem::path(path).extension().string();
+  if (e == ".node" || e == ".ele" || e == ".face" || e == ".edge" || e == ".json") return base_of(path);
+  return path;
+}
+
+vertex_id vertex_ref(text_reader& r, long base, std::size_t n, const char* what) {
+  const long v = r.integer(what);
+  if (v < base || v >= base + static_cast<long>(n))
+    r.fail(std::string(what) + " " + std::to_string(v) + " out of range [" + std::to_string(base) + ", " +
+           std::to_string(base + static_cast<long>(n) - 1) + "]");
+  return static_cast<vertex_id>(v - base);
+}
+
+// .face/.edge files are optional; when present they must refer to existing points.
+template <std::size_t D>
+void check_facet_file(const std::string& file, long base, std::size_t npoints) {
+  if (!std::filesystem::exists(file)) return;
+  text_reader r(file);
+  r.require_line(D == 3 ? "face count line '<#faces> <#markers>'" : "edge count line '<#edges> <#markers>'");
+  const long n = r.integer_in(D == 3 ? "number of faces" : "number of edges", 0, 1'000'000'000);
+  (void)r.optional_integer("number of boundary markers", 0);
+  for (long i = 0; i < n; ++i) {
+    r.require_line((D == 3 ? "face " : "edge ") + std::to_string(i + 1) + " of " + std::to_string(n));
+    (void)r.integer(D == 3 ? "face number" : "edge number");
+    for (std::size_t k = 0; k < D; ++k) (void)vertex_ref(r, base, npoints, "corner");
+  }
+}
+
+}  // namespace
+
+template <std::size_t D>
+domain<D> read_node_ele(const std::string& path) {
+  const std::string base = strip_mesh_extension(path);
+  const char* cell_word = D == 3 ? "tetrahedron" : "triangle";
+  domain<D> d;
+  long ibase = 0;
+  {
+    text_reader r(base + ".node");
+    r.require_line("point count line '<#points> <dimension> <#attributes> <#markers>'");
+    const long n = r.integer_in("number of points", 0, 1'000'000'000);
+    const long dim = r.integer("dimension");
+    if (dim != static_cast<long>(D))
+      r.fail("dimension " + std::to_string(dim) + " where " + std::to_string(D) + " was expected");
+    const long attributes = r.optional_integer("number of attributes", 0);
+    const long markers = r.optional_integer("number of boundary markers", 0);
+    if (attributes < 0 || attributes > 1000 || markers < 0 || markers > 1) r.fail("invalid attribute or marker count");
+    std::vector<int> pm;
+    std::vector<std::size_t> lines;
+    ibase = detail::read_node_block<D>(r, n, attributes, markers, d.mutable_points(), pm, lines);
+    check_points<D>(r.name(), d.points(), lines);
+  }
+  const std::size_t np = d.points().size();
+  const segment_table names = read_sidecar(base + ".json");
+  {
+    text_reader r(base + ".ele");
+    r.require_line(std::string("element count line '<#elements> <nodes per ") + cell_word + "> <#attributes>'");
+    const long n = r.integer_in("number of elements", 0, 1'000'000'000);
+    const long per = r.integer("nodes per element");
+    if (per != static_cast<long>(D + 1))
+      r.fail("only linear elements are supported: " + std::to_string(per) + " nodes per " + cell_word + ", expected " +
+             std::to_string(D + 1));
+    const long attributes = r.optional_integer("number of attributes", 0);
+    if (attributes < 0 || attributes > 1000) r.fail("invalid number of attributes " + std::to_string(attributes));
+    std::unordered_map<long, segment<D>*> seg_of;
+    std::unordered_map<std::array<vertex_id, D + 1>, long, detail::key_hash> seen;  // sorted corners -> element
+    for (long i = 0; i < n; ++i) {
+      r.require_line(std::string(cell_word) + " " + std::to_string(i + 1) + " of " + std::to_string(n));
+      (void)r.integer("element number");
+      std::array<vertex_id, D + 1> c;
+      for (auto& v : c) v = vertex_ref(r, ibase, np, "corner");
+      auto s = c;
+      std::sort(s.begin(), s.end());
+      if (std::adjacent_find(s.begin(), s.end()) != s.end()) r.fail(std::string(cell_word) + " repeats a vertex");
+      if (auto [it, fresh] = seen.try_emplace(s, i + 1); !fresh)
+        r.fail(std::string(cell_word) + " " + std::to_string(i + 1) + " repeats " + cell_word + " " + std::to_string(it->second));
+      long number = 1;
+      if (attributes > 0) {
+        const double a = r.real("region attribute");
+        if (a != std::floor(a) || std::fabs(a) > 1e9) r.fail("region attribute must be an integer, got " + std::to_string(a));
+        number = static_cast<long>(a);
+        for (long k = 1; k < attributes; ++k) (void)r.real("element attribute");
+      }
+      auto [it, fresh] = seg_of.try_emplace(number, nullptr);
+      if (fresh) {
+        std::string name = names.name_of(static_cast<int>(number));
+        if (name.empty()) name = "region_" + std::to_string(number);
+        if (d.find(name)) r.fail("segment name '" + name + "' given to two region attributes");
+        it->second = &d.add_segment(name, static_cast<int>(number));
+      }
+      it->second->add_cell(c);
+    }
+  }
+  check_facet_file<D>(base + (D == 3 ? ".face" : ".edge"), ibase, np);
+  detail::finalize_all(d, base + ".ele");
+  d.sync_slots();
+  return d;
+}
+template domain<2> read_node_ele<2>(const std::string&);
+template domain<3> read_node_ele<3>(const std::string&);
+
+template <std::size_t D>
+void write_node_ele(const domain<D>& d, const std::string& path) {
+  const std::string base = strip_mesh_extension(path);
+  const auto& pts = d.points();
+  detail::check_domain(d, base + ".ele");
+  const auto faces = detail::outer_facets(d, base + (D == 3 ? ".face" : ".edge"));
+  int largest = 0;
+  for (const auto& s : d.segments()) largest = std::max(largest, std::abs(s.number()));
+  int m = 100;
+  while (m <= largest) m *= 10;
+
+  atomic_file node(base + ".node"), ele(base + ".ele"), face(base + (D == 3 ? ".face" : ".edge"));
+  {
+    auto& o = node.stream();
+    o << "# written by gsse::io\n" << pts.size() << ' ' << D << " 0 0\n";
+    std::string line;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      line = std::to_string(i + 1);
+      for (double x : pts[i]) detail::append_real(line += ' ', x);
+      o << line << '\n';
+    }
+  }
+  {
+    auto& o = ele.stream();
+    std::size_t n = 0;
+    for (const auto& s : d.segments()) n += s.num_cells();
+    o << "# written by gsse::io; attribute = segment number\n" << n << ' ' << D + 1 << " 1\n";
+    std::size_t id = 0;
+    for (const auto& s : d.segments())
+      for (const auto& c : s.cell_data()) {
+        o << ++id;
+        for (auto v : c) o << ' ' << v + 1;
+        o << ' ' << s.number() << '\n';
+      }
+  }
+  {
+    auto& o = face.stream();
+    o << "# written by gsse::io; oriented into the first segment, marker = first*" << m << " + second (0: outside)\n"
+      << faces.size() << " 1\n";
+    std::size_t id = 0;
+    for (const auto& f : faces) {
+      o << ++id;
+      for (auto v : f.vertices) o << ' ' << v + 1;
+      const int a = d.segments()[f.first].number();
+      const int b = f.second < 0 ? 0 : d.segments()[static_cast<std::size_t>(f.second)].number();
+      o << ' ' << static_cast<long>(a) * m + b << '\n';
+    }
+  }
+  segment_table t;
+  for (const auto& s : d.segments()) {
+    t.names.push_back(s.name());
+    t.numbers.push_back(s.number());
+  }
+  t.face_marker_base = m;
+  node.commit();
+  ele.commit();
+  face.commit();
+  write_sidecar(base + ".json", t);
+}
+template void write_node_ele<2>(const domain<2>&, const std::string&);
+template void write_node_ele<3>(const domain<3>&, const std::string&);
+
+}  // namespace gsse::io

@@ -1,0 +1,150 @@
+#include "gsse/io/sidecar.hpp"
+
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "gsse/io/atomic_file.hpp"
+#include "gsse/io/error.hpp"
+
+namespace gsse::io {
+namespace {
+
+// Just enough JSON to read one array of strings or of integers under a top-level key. The rest of
+// the file (other keys of the generator's metadata) is skipped, not validated.
+struct json_scan {
+  const std::string& s;
+  const std::string& file;
+  std::size_t line_at(std::size_t pos) const {
+    std::size_t l = 1;
+    for (std::size_t i = 0; i < pos && i < s.size(); ++i) l += s[i] == '\n';
+    return l;
+  }
+  [[noreturn]] void fail(std::size_t pos, const std::string& what) const { throw io_error(file, line_at(pos), what); }
+  std::size_t skip_ws(std::size_t i) const {
+    while (i < s.size() && (s[i] == ' ' || s[i] == '\t' || s[i] == '\n' || s[i] == '\r')) ++i;
+    return i;
+  }
+  // position just after `"key"` and its colon, or npos
+  std::size_t find_key(const std::string& key) const {
+    const std::string q = "\"" + key + "\"";
+    for (std::size_t k = s.find(q); k != std::string::npos; k = s.find(q, k + 1)) {
+      std::size_t i = skip_ws(k + q.size());
+      if (i < s.size() && s[i] == ':') return skip_ws(i + 1);
+    }
+    return std::string::npos;
+  }
+  std::string string_at(std::size_t& i) const {
+    if (i >= s.size() || s[i] != '"') fail(i, "expected a string");
+    std::string r;
+    for (++i; i < s.size() && s[i] != '"'; ++i) {
+      if (s[i] == '\\') {
+        if (++i >= s.size()) break;
+        switch (s[i]) {
+          case 'n': r += '\n'; break;
+          case 't': r += '\t'; break;
+          case 'u': fail(i, "\\u escapes are not supported in segment names");
+          default: r += s[i];
+        }
+      } else {
+        r += s[i];
+      }
+    }
+    if (i >= s.size()) fail(i, "unterminated string");
+    ++i;
+    return r;
+  }
+  long integer_at(std::size_t& i) const {
+    long v = 0;
+    auto [p, ec] = std::from_chars(s.data() + i, s.data() + s.size(), v);
+    if (ec != std::errc()) fail(i, "expected an integer");
+    i = static_cast<std::size_t>(p - s.data());
+    return v;
+  }
+  template <class F>
+  void array_at(std::size_t i, F item) const {
+    if (i >= s.size() || s[i] != '[') fail(i, "expected '['");
+    i = skip_ws(i + 1);
+    if (i < s.size() && s[i] == ']') return;
+    while (true) {
+      item(i);
+      i = skip_ws(i);
+      if (i < s.size() && s[i] == ',') {
+        i = skip_ws(i + 1);
+        continue;
+      }
+      if (i < s.size() && s[i] == ']') return;
+      fail(i, "expected ',' or ']'");
+    }
+  }
+};
+
+std::string quoted(const std::string& n) {
+  std::string r = "\"";
+  for (char c : n) {
+    if (c == '"' || c == '\\') r += '\\';
+    if (c == '\n') { r += "\\n"; continue; }
+    if (c == '\t') { r += "\\t"; continue; }
+    r += c;
+  }
+  return r + "\"";
+}
+
+}  // namespace
+
+std::string base_of(const std::string& path) {
+  std::filesystem::path p(path);
+  return (p.parent_path() / p.stem()).string();
+}
+
+std::string segment_table::name_of(int number) const {
+  if (numbers.empty()) {
+    if (number >= 1 && static_cast<std::size_t>(number) <= names.size()) return names[static_cast<std::size_t>(number - 1)];
+    return {};
+  }
+  for (std::size_t k = 0; k < numbers.size() && k < names.size(); ++k)
+    if (numbers[k] == number) return names[k];
+  return {};
+}
+
+segment_table read_sidecar(const std::string& json_path) {
+  segment_table t;
+  std::ifstream in(json_path, std::ios::binary);
+  if (!in) return t;
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string s = ss.str();
+  json_scan j{s, json_path};
+  if (auto i = j.find_key("segments"); i != std::string::npos)
+    j.array_at(i, [&](std::size_t& k) { t.names.push_back(j.string_at(k)); });
+  if (auto i = j.find_key("numbers"); i != std::string::npos)
+    j.array_at(i, [&](std::size_t& k) {
+      const long v = j.integer_at(k);
+      if (v < -1'000'000'000 || v > 1'000'000'000) j.fail(k, "segment number out of range");
+      t.numbers.push_back(static_cast<int>(v));
+    });
+  if (!t.numbers.empty() && t.numbers.size() != t.names.size())
+    j.fail(j.find_key("numbers"), "\"numbers\" has " + std::to_string(t.numbers.size()) + " entries, \"segments\" has " +
+                                      std::to_string(t.names.size()));
+  if (auto i = j.find_key("face_marker_base"); i != std::string::npos) {
+    const long v = j.integer_at(i);
+    if (v < 0 || v > 1'000'000'000) j.fail(i, "face_marker_base out of range");
+    t.face_marker_base = static_cast<int>(v);
+  }
+  return t;
+}
+
+void write_sidecar(const std::string& json_path, const segment_table& t) {
+  write_atomically(json_path, [&](std::ostream& o) {
+    o << "{\n \"segments\": [";
+    for (std::size_t k = 0; k < t.names.size(); ++k) o << (k ? ", " : "") << quoted(t.names[k]);
+    o << "],\n \"numbers\": [";
+    for (std::size_t k = 0; k < t.numbers.size(); ++k) o << (k ? ", " : "") << t.numbers[k];
+    o << "]";
+    if (t.face_marker_base > 0) o << ",\n \"face_marker_base\": " << t.face_marker_base;
+    o << "\n}\n";
+  });
+}
+
+}  // namespace gsse::io

@@ -1,0 +1,73 @@
+#pragma once
+// The meshing pipeline as composed stages. Each stage is a function object with typed input and
+// output, so a research code can replace one (e.g. its own sizing) and keep the others:
+//
+//   plc --size_points--> volume points --conform--> boundary --label--> labelled boundary
+//       --mesh_segments (parallel over segments)--> domain --verify--> report
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gsse/conformer/conformer.hpp"
+#include "gsse/conformer/regions.hpp"
+#include "gsse/container/domain.hpp"
+#include "gsse/container/plc.hpp"
+
+namespace gsse::pipeline {
+
+struct options {
+  double size = 0;       // target element size H; 0: no sizing (boundary conforming only)
+  unsigned threads = 1;  // threads for the per-segment meshing
+  conformer::options conform{};
+  std::function<void(const std::string&)> progress;  // stage messages, may be empty
+};
+
+struct stage_time {
+  std::string stage;
+  double seconds;
+};
+
+struct report {
+  std::vector<stage_time> times;
+  std::size_t volume_points = 0, dropped_points = 0, steiner = 0;
+};
+
+/// Stage: interior points about H apart (BCC lattice in 3D, triangular in 2D), clipped to the
+/// segments (not holes) and kept at least H/2 from boundary vertices, plus the user's cloud points
+/// that lie inside a segment (the others are counted in `dropped`).
+template <std::size_t D>
+struct size_points {
+  std::vector<point<D>> operator()(const plc<D>& p, double h, const std::vector<point<D>>& cloud, std::size_t& dropped,
+                                   const conformer::options& co) const;
+};
+
+/// Stage: conform the boundary with respect to the volume points.
+template <std::size_t D>
+struct conform {
+  conformer::boundary<D> operator()(const plc<D>& p, const std::vector<point<D>>& volume,
+                                    const conformer::options& co) const {
+    return conformer::conform(p, volume, co);
+  }
+};
+
+/// Stage: fill every segment by the front mesher, segments in parallel; merged deterministically
+/// (segments in number order, cells in front order), unused points dropped.
+template <std::size_t D>
+struct mesh_segments {
+  domain<D> operator()(const conformer::boundary<D>& b, const conformer::labelling& l, unsigned threads) const;
+};
+
+/// Library verifier: every cell positively oriented, each facet in at most two cells, every
+/// segment boundary facet is a conformed boundary face with that segment on its inner side
+/// (conforming, correctly labelled), and no vertex strictly inside any cell's circumsphere
+/// (Delaunay). Returns the problems found (empty: valid).
+template <std::size_t D>
+std::vector<std::string> verify(const domain<D>& d, const conformer::boundary<D>* b = nullptr,
+                                const conformer::labelling* l = nullptr);
+
+/// All stages in order.
+template <std::size_t D>
+domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const options& o, report& r);
+
+}  // namespace gsse::pipeline

@@ -1,0 +1,354 @@
+#include "gsse/pipeline/pipeline.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "gsse/front/front_mesher.hpp"
+#include "gsse/front/gift_wrap.hpp"
+#include "gsse/geometry/predicates.hpp"
+#include "gsse/topology/incidence.hpp"
+#include "gsse/traversal/for_each.hpp"
+
+namespace gsse::pipeline {
+namespace {
+
+template <std::size_t D>
+using cell_t = std::array<vertex_id, D + 1>;
+
+/// Faces of region r oriented with r on their positive side.
+template <std::size_t D>
+std::vector<std::array<vertex_id, D>> region_boundary(const conformer::boundary<D>& b, const conformer::labelling& l,
+                                                      int r) {
+  std::vector<std::array<vertex_id, D>> out;
+  for (std::size_t f = 0; f < b.faces.size(); ++f)
+    for (int s = 0; s < 2; ++s)
+      if (l.side[f][static_cast<std::size_t>(s)] == r) {
+        auto F = b.faces[f];
+        if (s == 1) std::swap(F[0], F[1]);
+        out.push_back(F);
+      }
+  return out;
+}
+
+template <std::size_t D>
+std::vector<std::vector<cell_t<D>>> wrap_all(const conformer::boundary<D>& b, const conformer::labelling& l,
+                                             unsigned threads) {
+  const auto grid = front::make_grid(std::span<const point<D>>(b.points));
+  std::vector<std::vector<cell_t<D>>> cells(l.regions.size());
+  std::vector<std::size_t> ids(l.regions.size());
+  std::iota(ids.begin(), ids.end(), 0);
+  std::vector<std::vector<std::array<vertex_id, D>>> bnd(l.regions.size());
+  for (std::size_t r = 0; r < l.regions.size(); ++r) bnd[r] = region_boundary(b, l, static_cast<int>(r));
+  auto work = [&](std::size_t r) {
+    cells[r] = front::wrap(std::span<const point<D>>(b.points), grid, bnd[r],
+                           "segment " + std::to_string(l.regions[r].number) + " '" + l.regions[r].name + "'");
+  };
+  // cost estimate: boundary size (volume work is unknown before meshing)
+  for_each(execution::par(threads), ids, work, [&](std::size_t r) { return static_cast<double>(bnd[r].size()); });
+  return cells;
+}
+
+template <std::size_t D>
+bool inside_cell(const std::vector<point<D>>& p, const cell_t<D>& c, const point<D>& q) {
+  if constexpr (D == 2) {
+    return geometry::orient2d(p[c[0]], p[c[1]], q) > 0 && geometry::orient2d(p[c[1]], p[c[2]], q) > 0 &&
+           geometry::orient2d(p[c[2]], p[c[0]], q) > 0;
+  } else {
+    return geometry::orient3d(p[c[1]], p[c[2]], p[c[3]], q) * geometry::orient3d(p[c[1]], p[c[2]], p[c[3]], p[c[0]]) > 0 &&
+           geometry::orient3d(p[c[0]], p[c[2]], p[c[3]], q) * geometry::orient3d(p[c[0]], p[c[2]], p[c[3]], p[c[1]]) > 0 &&
+           geometry::orient3d(p[c[0]], p[c[1]], p[c[3]], q) * geometry::orient3d(p[c[0]], p[c[1]], p[c[3]], p[c[2]]) > 0 &&
+           geometry::orient3d(p[c[0]], p[c[1]], p[c[2]], q) * geometry::orient3d(p[c[0]], p[c[1]], p[c[2]], p[c[3]]) > 0;
+  }
+}
+
+}  // namespace
+
+template <std::size_t D>
+std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, const std::vector<point<D>>& cloud,
+                                                 std::size_t& dropped, const conformer::options& co) const {
+  dropped = 0;
+  if (h <= 0 && cloud.empty()) return {};
+  // A coarse mesh of the boundary alone locates candidate points exactly (point-in-simplex).
+  auto b = conformer::conform(p, {}, co);
+  const auto l = conformer::label(b, p);
+  const auto coarse = wrap_all(b, l, 1);
+  std::vector<cell_t<D>> all;
+  for (const auto& cs : coarse) all.insert(all.end(), cs.begin(), cs.end());
+  point<D> lo = b.points[0], hi = b.points[0];
+  for (const auto& q : b.points)
+    for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+  // bucket coarse cells by bounding box
+  const double ext = distance(lo, hi);
+  const double cell = std::max(ext / std::pow(static_cast<double>(all.size() + 1), 1.0 / D), 1e-300);
+  std::map<std::array<long, D>, std::vector<std::uint32_t>> buckets;
+  auto key = [&](const point<D>& q) {
+    std::array<long, D> k;
+    for (std::size_t a = 0; a < D; ++a) k[a] = static_cast<long>(std::floor((q[a] - lo[a]) / cell));
+    return k;
+  };
+  for (std::uint32_t c = 0; c < all.size(); ++c) {
+    point<D> clo = b.points[all[c][0]], chi = clo;
+    for (auto v : all[c])
+      for (std::size_t a = 0; a < D; ++a) clo[a] = std::min(clo[a], b.points[v][a]), chi[a] = std::max(chi[a], b.points[v][a]);
+    auto ka = key(clo), kb = key(chi), k = ka;
+    for (;;) {
+      buckets[k].push_back(c);
+      std::size_t a = 0;
+      while (a < D && ++k[a] > kb[a]) k[a] = ka[a], ++a;
+      if (a == D) break;
+    }
+  }
+  auto in_segment = [&](const point<D>& q) {
+    auto it = buckets.find(key(q));
+    if (it == buckets.end()) return false;
+    for (auto c : it->second)
+      if (inside_cell(b.points, all[c], q)) return true;
+    return false;
+  };
+  std::vector<point<D>> out;
+  if (h > 0) {
+    // keep-off distance from boundary vertices, through a hash of boundary points
+    const double keep = 0.5 * h;
+    std::map<std::array<long, D>, std::vector<vertex_id>> near;
+    auto nkey = [&](const point<D>& q) {
+      std::array<long, D> k;
+      for (std::size_t a = 0; a < D; ++a) k[a] = static_cast<long>(std::floor((q[a] - lo[a]) / keep));
+      return k;
+    };
+    for (vertex_id v = 0; v < b.points.size(); ++v) near[nkey(b.points[v])].push_back(v);
+    auto clear_of_boundary = [&](const point<D>& q) {
+      auto k0 = nkey(q);
+      std::array<long, D> k = k0;
+      for (std::size_t a = 0; a < D; ++a) k[a] = k0[a] - 1;
+      for (;;) {
+        if (auto it = near.find(k); it != near.end())
+          for (auto v : it->second)
+            if (squared_distance(b.points[v], q) < keep * keep) return false;
+        std::size_t a = 0;
+        while (a < D && ++k[a] > k0[a] + 1) k[a] = k0[a] - 1, ++a;
+        if (a == D) break;
+      }
+      return true;
+    };
+    // lattice: BCC in 3D (nearest-neighbour distance h), triangular in 2D; the origin is shifted
+    // by odd fractions so lattice points rarely sit exactly on axis-aligned input planes
+    const double a = D == 3 ? 2 * h / std::sqrt(3.0) : h;
+    const double rowh = D == 3 ? a : h * std::sqrt(3.0) / 2;
+    std::array<long, D> n;
+    for (std::size_t k = 0; k < D; ++k) n[k] = static_cast<long>((hi[k] - lo[k]) / (k == 1 && D == 2 ? rowh : a)) + 2;
+    auto consider = [&](const point<D>& q) {
+      if (clear_of_boundary(q) && in_segment(q)) out.push_back(q);
+    };
+    if constexpr (D == 3) {
+      for (long i = 0; i < n[0]; ++i)
+        for (long j = 0; j < n[1]; ++j)
+          for (long k = 0; k < n[2]; ++k) {
+            const point3 q{lo[0] + a * (static_cast<double>(i) + 0.0137), lo[1] + a * (static_cast<double>(j) + 0.0271),
+                           lo[2] + a * (static_cast<double>(k) + 0.0419)};
+            consider(q);
+            consider(q + point3{a / 2, a / 2, a / 2});
+          }
+    } else {
+      for (long j = 0; j < n[1]; ++j)
+        for (long i = 0; i < n[0]; ++i)
+          consider(point2{lo[0] + a * (static_cast<double>(i) + 0.0137 + 0.5 * static_cast<double>(j % 2)),
+                          lo[1] + rowh * (static_cast<double>(j) + 0.0271)});
+    }
+  }
+  for (const auto& q : cloud) {
+    if (in_segment(q))
+      out.push_back(q);
+    else
+      ++dropped;
+  }
+  // no duplicates: a cloud point may repeat a lattice point or another cloud point
+  std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return lex_less(x, y); });
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+template <std::size_t D>
+domain<D> mesh_segments<D>::operator()(const conformer::boundary<D>& b, const conformer::labelling& l,
+                                       unsigned threads) const {
+  const auto cells = wrap_all(b, l, threads);
+  // compact the points actually used, keeping their order
+  std::vector<vertex_id> remap(b.points.size(), no_vertex);
+  for (const auto& cs : cells)
+    for (const auto& c : cs)
+      for (auto v : c) remap[v] = 0;
+  domain<D> d;
+  vertex_id next = 0;
+  for (vertex_id v = 0; v < b.points.size(); ++v)
+    if (remap[v] == 0) {
+      remap[v] = next++;
+      d.add_point(b.points[v]);
+    }
+  std::vector<std::size_t> order(l.regions.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](auto x, auto y) { return l.regions[x].number < l.regions[y].number; });
+  for (std::size_t r : order) {
+    auto& s = d.add_segment(l.regions[r].name, l.regions[r].number);
+    s.reserve(cells[r].size());
+    for (auto c : cells[r]) {
+      for (auto& v : c) v = remap[v];
+      s.add_cell(c);
+    }
+  }
+  d.sync_slots();
+  return d;
+}
+
+template <std::size_t D>
+std::vector<std::string> verify(const domain<D>& d, const conformer::boundary<D>* b, const conformer::labelling* l) {
+  std::vector<std::string> problems;
+  auto problem = [&](std::string s) {
+    if (problems.size() < 20) problems.push_back(std::move(s));
+  };
+  const auto& p = d.points();
+  const auto grid = front::make_grid(std::span<const point<D>>(p));
+  std::size_t bad_orientation = 0, not_delaunay = 0;
+  for (const auto& s : d.segments()) {
+    segment<D> copy = s;
+    try {
+      copy.finalize();
+    } catch (const std::exception& e) {
+      problem("segment '" + s.name() + "': " + e.what());
+    }
+    for (const auto& c : s.cell_data()) {
+      int o;
+      if constexpr (D == 2)
+        o = geometry::orient2d(p[c[0]], p[c[1]], p[c[2]]);
+      else
+        o = geometry::orient3d(p[c[0]], p[c[1]], p[c[2]], p[c[3]]);
+      if (o <= 0) {
+        ++bad_orientation;
+        continue;
+      }
+      // circumball, padded; exact in-sphere test on every point in its box
+      point<D> cc{};
+      double r = 0;
+      if constexpr (D == 2) {
+        const point2 u = p[c[1]] - p[c[0]], v = p[c[2]] - p[c[0]];
+        const double den = 2 * (u[0] * v[1] - u[1] * v[0]);
+        cc = p[c[0]] + point2{(v[1] * dot(u, u) - u[1] * dot(v, v)) / den, (u[0] * dot(v, v) - v[0] * dot(u, u)) / den};
+      } else {
+        const point3 u = p[c[1]] - p[c[0]], v = p[c[2]] - p[c[0]], w = p[c[3]] - p[c[0]];
+        const double det = dot(u, cross(v, w));
+        cc = p[c[0]] + (1.0 / (2 * det)) * (dot(u, u) * cross(v, w) + dot(v, v) * cross(w, u) + dot(w, w) * cross(u, v));
+      }
+      r = distance(cc, p[c[0]]) * (1 + 1e-6) + 1e-12 * (1 + std::abs(cc[0]));
+      std::array<double, D> lo, hi;
+      for (std::size_t k = 0; k < D; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
+      const bool unreliable = !std::isfinite(r);
+      if (unreliable) lo = grid.lower(), hi = grid.upper();
+      bool violated = false;
+      grid.visit_box(lo, hi, [&](vertex_id y, const auto&) {
+        if (std::find(c.begin(), c.end(), y) != c.end()) return true;
+        int in;
+        if constexpr (D == 2)
+          in = geometry::in_circle(p[c[0]], p[c[1]], p[c[2]], p[y]);
+        else
+          in = geometry::in_sphere(p[c[0]], p[c[1]], p[c[2]], p[c[3]], p[y]);
+        violated = in > 0;
+        return !violated;
+      });
+      not_delaunay += violated;
+    }
+  }
+  if (bad_orientation) problem(std::to_string(bad_orientation) + " cells are degenerate or inverted");
+  if (not_delaunay) problem(std::to_string(not_delaunay) + " cells have a vertex strictly inside their circumsphere");
+  // conformity and labels: segment boundaries are exactly the labelled boundary faces
+  if (b && l) {
+    std::map<std::array<vertex_id, D>, std::size_t> face_of;
+    // domain ids are a compaction of boundary ids: rebuild the map by coordinates
+    std::map<point<D>, vertex_id> id_of;
+    for (vertex_id v = 0; v < p.size(); ++v) id_of[p[v]] = v;
+    std::vector<std::array<vertex_id, D>> faces(b->faces.size());
+    for (std::size_t f = 0; f < b->faces.size(); ++f) {
+      for (std::size_t k = 0; k < D; ++k) {
+        auto it = id_of.find(b->points[b->faces[f][k]]);
+        if (it == id_of.end()) {
+          problem("boundary face " + std::to_string(f + 1) + " has a vertex missing from the mesh");
+          return problems;
+        }
+        faces[f][k] = it->second;
+      }
+      auto key = faces[f];
+      std::sort(key.begin(), key.end());
+      face_of[key] = f;
+    }
+    std::size_t k = 0;
+    std::vector<std::size_t> seg_region(d.segments().size());
+    for (const auto& s : d.segments()) {
+      int r = -1;
+      for (std::size_t i = 0; i < l->regions.size(); ++i)
+        if (l->regions[i].number == s.number() && l->regions[i].name == s.name()) r = static_cast<int>(i);
+      segment<D> copy = s;
+      copy.finalize();
+      std::size_t covered = 0;
+      for (const facet f : boundary_facets(copy)) {
+        auto fv = vertices(copy, f);
+        auto key = fv;
+        std::sort(key.begin(), key.end());
+        auto it = face_of.find(key);
+        if (it == face_of.end()) {
+          problem("segment '" + s.name() + "' has a boundary facet that lies on no input facet");
+          continue;
+        }
+        // the face's positive side is its stored orientation; the facet faces into the segment
+        std::array<vertex_id, D> stored = faces[it->second];
+        const bool same = D == 2 ? stored == fv : front::same_orientation(stored, fv);
+        const int side = same ? 0 : 1;
+        if (l->side[it->second][static_cast<std::size_t>(side)] != r)
+          problem("segment '" + s.name() + "' touches boundary face " + std::to_string(it->second + 1) +
+                  " on the side labelled for another segment");
+        ++covered;
+      }
+      std::size_t expected = 0;
+      for (const auto& sd : l->side) expected += (sd[0] == r) + (sd[1] == r);
+      if (covered != expected)
+        problem("segment '" + s.name() + "' covers " + std::to_string(covered) + " of its " + std::to_string(expected) +
+                " boundary faces");
+      ++k;
+    }
+  }
+  return problems;
+}
+
+template <std::size_t D>
+domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const options& o, report& r) {
+  using clock = std::chrono::steady_clock;
+  auto t = clock::now();
+  auto lap = [&](const char* stage) {
+    const auto now = clock::now();
+    r.times.push_back({stage, std::chrono::duration<double>(now - t).count()});
+    t = now;
+    if (o.progress) o.progress(std::string(stage) + " done");
+  };
+  conformer::options co = o.conform;
+  co.size = o.size;
+  const auto volume = size_points<D>{}(p, o.size, cloud, r.dropped_points, co);
+  r.volume_points = volume.size();
+  lap("sizing");
+  const auto b = conform<D>{}(p, volume, co);
+  r.steiner = b.steiner;
+  lap("conform");
+  const auto l = conformer::label(b, p);
+  lap("label");
+  auto d = mesh_segments<D>{}(b, l, o.threads);
+  lap("mesh");
+  return d;
+}
+
+template struct size_points<2>;
+template struct size_points<3>;
+template struct mesh_segments<2>;
+template struct mesh_segments<3>;
+template std::vector<std::string> verify<2>(const domain<2>&, const conformer::boundary<2>*, const conformer::labelling*);
+template std::vector<std::string> verify<3>(const domain<3>&, const conformer::boundary<3>*, const conformer::labelling*);
+template domain<2> mesh<2>(const plc<2>&, const std::vector<point2>&, const options&, report&);
+template domain<3> mesh<3>(const plc<3>&, const std::vector<point3>&, const options&, report&);
+
+}  // namespace gsse::pipeline
