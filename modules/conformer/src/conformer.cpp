@@ -41,7 +41,8 @@ template <std::size_t D>
 class state {
  public:
   state(const plc<D>& p, const std::vector<point<D>>& volume, const options& o)
-      : plc_(p), opt_(o), grid_(p.points.empty() ? point<D>{} : p.points[0], cell_size_for(p.points, o.size)) {
+      : plc_(p), opt_(o), grid_h_(p.points.empty() ? 1.0 : cell_size_for(p.points, o.size)),
+        grid_(p.points.empty() ? point<D>{} : p.points[0], grid_h_) {
     if (p.points.empty()) throw conform_error(p.source + ": the PLC has no points");
     out_.points = p.points;
     out_.homes.assign(p.points.size(), {});
@@ -244,6 +245,7 @@ class state {
   const plc<D>& plc_;
   options opt_;
   boundary<D> out_;
+  double grid_h_;
   detail::spatial_hash<D> grid_;
   rules::rule_set own_rules_;
   const rules::rule_set* rules_;
@@ -456,8 +458,21 @@ class state3 : public state<3> {
   long locate(std::uint32_t f, const point3& q) const {
     const auto& S = facets_[f];
     const auto& p = out_.points;
+    const point2 pq = geometry::project(q, S.axis);
     for (std::size_t t = 0; t < S.triangles.size(); ++t) {
       const auto& T = S.triangles[t];
+      // double bounding-box prefilter (padded), exact test after
+      bool out = false;
+      for (int k = 0; k < 2 && !out; ++k) {
+        double lo = 1e300, hi = -1e300;
+        for (auto v : T) {
+          const double c = geometry::project(p[v], S.axis)[static_cast<std::size_t>(k)];
+          lo = std::min(lo, c), hi = std::max(hi, c);
+        }
+        const double pad = 1e-9 * (hi - lo) + 1e-300;
+        out = pq[static_cast<std::size_t>(k)] < lo - pad || pq[static_cast<std::size_t>(k)] > hi + pad;
+      }
+      if (out) continue;
       if (geometry::orient_projected(p[T[0]], p[T[1]], q, S.axis) >= 0 &&
           geometry::orient_projected(p[T[1]], p[T[2]], q, S.axis) >= 0 &&
           geometry::orient_projected(p[T[2]], p[T[0]], q, S.axis) >= 0)
@@ -471,8 +486,12 @@ class state3 : public state<3> {
     for (const auto& loop : facets_[f].loops)
       for (auto [e, fw] : loop) {
         const auto& ch = edges_[e].chain;
-        for (std::size_t i = 0; i + 1 < ch.size(); ++i)
-          if (geometry::in_diametral(out_.points[ch[i]], out_.points[ch[i + 1]], q) >= 0) return std::pair{e, i};
+        for (std::size_t i = 0; i + 1 < ch.size(); ++i) {
+          const point3 &a = out_.points[ch[i]], &b = out_.points[ch[i + 1]];
+          const double r = 0.5 * distance(a, b) * (1 + 1e-9) + 1e-300;
+          if (squared_distance(0.5 * (a + b), q) > r * r) continue;  // double prefilter, padded
+          if (geometry::in_diametral(a, b, q) >= 0) return std::pair{e, i};
+        }
       }
     return std::nullopt;
   }
@@ -481,16 +500,29 @@ class state3 : public state<3> {
   std::size_t conform_facets() {
     std::size_t splits = 0;
     const auto& p = out_.points;
+    // points inserted in this phase, anywhere: a triangle whose circumball holds one is stale
+    // until its facet is triangulated again next round
+    detail::spatial_hash<3> fresh(p[0], grid_h_);
+    bool any_fresh = false;
+    auto note = [&](vertex_id v) {
+      fresh.insert(v, p[v]);
+      any_fresh = true;
+    };
     for (std::uint32_t f = 0; f < facets_.size(); ++f) {
       auto& S = facets_[f];
-      std::vector<point3> inserted;  // this round, in f
       const auto tris = S.triangles;
       for (const auto& T : tris) {
-        // a subsegment of f split earlier in this round (from a neighbouring facet) makes the
-        // triangulation stale: leave f for the next round
-        if (boundary_size(f) != S.boundary_size) break;
         bool stale = false;
-        for (const auto& q : inserted) stale |= geometry::in_equatorial(p[T[0]], p[T[1]], p[T[2]], q) >= 0;
+        if (any_fresh) {
+          const point3 u = p[T[1]] - p[T[0]], v = p[T[2]] - p[T[0]], n = cross(u, v);
+          const point3 cc = p[T[0]] + (1.0 / (2 * dot(n, n))) * cross(dot(u, u) * v - dot(v, v) * u, n);
+          const double r = distance(cc, p[T[0]]) * (1 + 1e-6) + 1e-300;
+          point3 lo, hi;
+          for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
+          fresh.visit(lo, hi, [&](vertex_id w) {
+            stale = stale || (squared_distance(cc, p[w]) <= r * r && geometry::in_equatorial(p[T[0]], p[T[1]], p[T[2]], p[w]) >= 0);
+          });
+        }
         if (stale) continue;
         const vertex_id y = facet_encroacher(T[0], T[1], T[2]);
         const bool too_big = opt_.size > 0 && std::max({distance(p[T[0]], p[T[1]]), distance(p[T[1]], p[T[2]]),
@@ -504,7 +536,7 @@ class state3 : public state<3> {
               locate(f, p[y]) >= 0) {
             out_.homes[y] = {home::facet, f};
             S.interior.push_back(y);
-            inserted.push_back(p[y]);
+            note(y);
             ++splits;
             continue;
           }
@@ -524,7 +556,7 @@ class state3 : public state<3> {
           const point3 m = snap_to_edge(split_at(element_kind::subsegment, relation::on_incident_edge, {a, b}, q, nullptr), a, b);
           const vertex_id v = add_point(m, {home::edge, s->first});
           E.chain.insert(E.chain.begin() + static_cast<long>(s->second) + 1, v);
-          inserted.push_back(m);
+          note(v);
           ++splits;
           continue;
         }
@@ -533,19 +565,77 @@ class state3 : public state<3> {
           if (S.constant[k]) q[k] = S.constant_value[k];
         const vertex_id v = add_point(q, {home::facet, f});
         S.interior.push_back(v);
-        inserted.push_back(q);
+        note(v);
         ++splits;
       }
     }
     return splits;
   }
 
+  /// Sizing: a triangular lattice of spacing `size` in each facet's plane, clipped to the facet
+  /// and kept size/2 away from its boundary vertices. Exact on axis-aligned facets (the constant
+  /// coordinate is copied), within rounding on slanted ones.
+  void seed_facets() {
+    const double h = opt_.size;
+    for (std::uint32_t f = 0; f < facets_.size(); ++f) {
+      auto& S = facets_[f];
+      if (S.loops.empty()) continue;
+      const auto vs = facet_vertices(f);
+      const point3 o = out_.points[vs[0]];
+      // in-plane orthonormal basis (u along the first boundary edge)
+      const auto& e0 = edges_[S.loops[0][0].first];
+      point3 u = out_.points[e0.v] - out_.points[e0.u];
+      point3 n{0, 0, 0};
+      for (std::size_t i = 1; i + 1 < vs.size() && dot(n, n) == 0; ++i) n = cross(u, out_.points[vs[i + 1]] - out_.points[vs[0]]);
+      if (dot(n, n) == 0) continue;
+      u = (1.0 / std::sqrt(dot(u, u))) * u;
+      n = (1.0 / std::sqrt(dot(n, n))) * n;
+      const point3 v = cross(n, u);
+      double ulo = 1e300, uhi = -1e300, vlo = 1e300, vhi = -1e300;
+      for (vertex_id w : vs) {
+        const point3 d = out_.points[w] - o;
+        ulo = std::min(ulo, dot(d, u)), uhi = std::max(uhi, dot(d, u));
+        vlo = std::min(vlo, dot(d, v)), vhi = std::max(vhi, dot(d, v));
+      }
+      detail::spatial_hash<3> near(o, 0.5 * h);
+      for (vertex_id w : vs) near.insert(w, out_.points[w]);
+      const double row = h * std::sqrt(3.0) / 2;
+      for (long j = 0; vlo + row * (static_cast<double>(j) + 0.0271) < vhi; ++j)
+        for (long i = 0; ulo + h * (static_cast<double>(i) + 0.0137) < uhi; ++i) {
+          const double a = ulo + h * (static_cast<double>(i) + 0.0137 + 0.5 * static_cast<double>(j % 2));
+          const double b = vlo + row * (static_cast<double>(j) + 0.0271);
+          point3 q = o + a * u + b * v;
+          for (std::size_t k = 0; k < 3; ++k)
+            if (S.constant[k]) q[k] = S.constant_value[k];
+          bool clear = true;
+          point3 lo, hi;
+          for (std::size_t k = 0; k < 3; ++k) lo[k] = q[k] - 0.5 * h, hi[k] = q[k] + 0.5 * h;
+          near.visit(lo, hi, [&](vertex_id w) { clear = clear && squared_distance(out_.points[w], q) >= 0.25 * h * h; });
+          if (!clear || locate(f, q) < 0) continue;
+          S.interior.push_back(add_point(q, {home::facet, f}));
+          near.insert(static_cast<vertex_id>(out_.points.size() - 1), q);
+        }
+    }
+  }
+
+  std::size_t vertex_count(std::uint32_t f) const { return boundary_size(f) + facets_[f].interior.size(); }
+
   boundary<3> run() {
     presplit_edges();
+    if (opt_.size > 0) {
+      conform_segments();
+      for (std::uint32_t f = 0; f < facets_.size(); ++f) triangulate(f);
+      seed_facets();
+    }
+    std::vector<std::size_t> seen(facets_.size(), 0);
     for (;;) {
       ++out_.rounds;
       conform_segments();
-      for (std::uint32_t f = 0; f < facets_.size(); ++f) triangulate(f);
+      for (std::uint32_t f = 0; f < facets_.size(); ++f)
+        if (vertex_count(f) != seen[f]) {  // only facets whose vertex set changed
+          triangulate(f);
+          seen[f] = vertex_count(f);
+        }
       if (conform_facets() == 0) break;
     }
     for (std::uint32_t f = 0; f < facets_.size(); ++f)

@@ -1,0 +1,321 @@
+// Round trips through every format: what we write reads back with the same points (bit for bit),
+// segment names, numbers and order, cells (vertex order, hence orientation) and interfaces; the
+// read-only formats (.poly, .smesh, OFF, STL) read hand-written files with known content.
+#define BOOST_TEST_MODULE io_roundtrip
+#include <boost/test/unit_test.hpp>
+
+#include <cstdint>
+#include <cstring>
+#include <sstream>
+
+#include "../support/fixtures.hpp"
+#include "gsse/io/atomic_file.hpp"
+#include "gsse/io/gmsh.hpp"
+#include "gsse/io/node_ele.hpp"
+#include "gsse/io/poly.hpp"
+#include "gsse/io/sidecar.hpp"
+#include "gsse/io/surface.hpp"
+#include "gsse/io/vtu.hpp"
+#include "io_test_util.hpp"
+
+using namespace gsse;
+
+namespace {
+
+// Two segments with non-trivial numbers, given in non-sorted order, and names that need quoting
+// in some formats; the segment order must survive too.
+template <std::size_t D>
+domain<D> sample() {
+  std::array<int, D> n;
+  n.fill(2);
+  n[0] = 3;
+  auto d = test::make_two_segment_domain<D>(n, 1.5);
+  d.segments()[0].set_name("p doped silicon");
+  d.segments()[0].set_number(7);
+  d.segments()[1].set_name("oxide");
+  d.segments()[1].set_number(3);
+  // irrational coordinates check that text formats keep every bit
+  for (auto& p : d.mutable_points())
+    for (auto& x : p) x = x / 3.0 + 0.1;
+  return d;
+}
+
+template <std::size_t D>
+void require_same(const domain<D>& a, const domain<D>& b) {
+  BOOST_TEST_REQUIRE(a.points().size() == b.points().size());
+  for (std::size_t i = 0; i < a.points().size(); ++i)
+    BOOST_TEST_REQUIRE(std::memcmp(a.points()[i].data(), b.points()[i].data(), sizeof(double) * D) == 0);
+  BOOST_TEST_REQUIRE(a.segments().size() == b.segments().size());
+  for (std::size_t k = 0; k < a.segments().size(); ++k) {
+    const auto &s = a.segments()[k], &t = b.segments()[k];
+    BOOST_TEST(s.name() == t.name());
+    BOOST_TEST(s.number() == t.number());
+    BOOST_TEST_REQUIRE(s.num_cells() == t.num_cells());
+    for (std::size_t c = 0; c < s.num_cells(); ++c)
+      BOOST_TEST_REQUIRE((s.cell(static_cast<cell_id>(c)) == t.cell(static_cast<cell_id>(c))));
+  }
+  // interface orientation: the facets between segments 0 and 1, as seen from segment 0
+  auto fa = interface_facets(a, 0, 1), fb = interface_facets(b, 0, 1);
+  BOOST_TEST_REQUIRE(fa.size() == fb.size());
+  BOOST_TEST(!fa.empty());
+  for (std::size_t i = 0; i < fa.size(); ++i)
+    BOOST_TEST((vertices(a.segments()[0], fa[i].first) == vertices(b.segments()[0], fb[i].first)));
+}
+
+template <std::size_t D>
+domain<D> finalized(domain<D> d) {
+  for (auto& s : d.segments()) s.finalize();
+  return d;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(node_ele_face_3d) {
+  test::scratch_dir dir("rt_ne3");
+  const auto d = finalized(sample<3>());
+  io::write_node_ele(d, dir.file("mesh"));
+  auto r = io::read_tetgen_mesh(dir.file("mesh.ele"));
+  require_same(d, r);
+  // .face: every boundary facet of each segment plus the interface once, oriented into the
+  // segment of lower number (oxide, 3) with marker 3*100 + 7
+  const auto t = io::read_sidecar(dir.file("mesh.json"));
+  BOOST_TEST(t.face_marker_base == 100);
+  std::istringstream in(test::slurp_file(dir.file("mesh.face")));
+  std::string line;
+  std::getline(in, line);  // comment
+  std::size_t n = 0;
+  in >> n >> line;
+  std::size_t interface = 0, outer = 0;
+  const auto ifs = interface_facets(d, 1, 0);  // oriented into segment index 1 (number 3)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t id;
+    std::array<vertex_id, 3> v;
+    long marker;
+    in >> id >> v[0] >> v[1] >> v[2] >> marker;
+    for (auto& x : v) --x;
+    if (marker == 307) {
+      ++interface;
+      bool found = false;
+      for (const auto& f : ifs) found = found || vertices(d.segments()[1], f.first) == v;
+      BOOST_TEST(found);
+    } else {
+      BOOST_TEST((marker == 700 || marker == 300));
+      ++outer;
+    }
+  }
+  BOOST_TEST(interface == ifs.size());
+  BOOST_TEST(outer == boundary_facets(d.segments()[0]).size() + boundary_facets(d.segments()[1]).size() - 2 * ifs.size());
+}
+
+BOOST_AUTO_TEST_CASE(node_ele_edge_2d) {
+  test::scratch_dir dir("rt_ne2");
+  const auto d = finalized(sample<2>());
+  io::write_node_ele(d, dir.file("mesh"));
+  BOOST_TEST(std::filesystem::exists(dir.file("mesh.edge")));
+  require_same(d, io::read_triangle_mesh(dir.file("mesh")));
+}
+
+BOOST_AUTO_TEST_CASE(node_ele_without_sidecar_names_regions) {
+  test::scratch_dir dir("rt_ne_nojson");
+  const auto d = finalized(sample<3>());
+  io::write_node_ele(d, dir.file("m.node"));
+  std::filesystem::remove(dir.file("m.json"));
+  auto r = io::read_tetgen_mesh(dir.file("m"));
+  BOOST_TEST(r.segments()[0].name() == "region_7");
+  BOOST_TEST(r.segments()[1].name() == "region_3");
+}
+
+BOOST_AUTO_TEST_CASE(msh_ascii_and_binary) {
+  test::scratch_dir dir("rt_msh");
+  for (bool binary : {false, true}) {
+    const auto d3 = finalized(sample<3>());
+    io::write_msh(d3, dir.file("m3.msh"), binary);
+    require_same(d3, io::read_msh<3>(dir.file("m3.msh")));
+    BOOST_TEST(std::holds_alternative<domain<3>>(io::read_msh_any(dir.file("m3.msh"))));
+    const auto d2 = finalized(sample<2>());
+    io::write_msh(d2, dir.file("m2.msh"), binary);
+    require_same(d2, io::read_msh<2>(dir.file("m2.msh")));
+    BOOST_TEST(std::holds_alternative<domain<2>>(io::read_msh_any(dir.file("m2.msh"))));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(msh_skips_lower_dimensional_elements_and_unknown_sections) {
+  test::scratch_dir dir("rt_msh_extra");
+  const auto p = dir.write("t.msh",
+                           "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+                           "$Comments\nanything $Foo\n$EndComments\n"
+                           "$PhysicalNames\n2\n3 5 \"body\"\n2 9 \"skin\"\n$EndPhysicalNames\n"
+                           "$Entities\n0 0 1 1\n1 0 0 0 1 1 0 1 9 0\n1 0 0 0 1 1 1 1 5 1 1\n$EndEntities\n"
+                           "$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n"
+                           "$Elements\n2 2 1 4\n2 1 2 1\n1 1 3 2\n3 1 4 1\n2 1 2 3 4\n$EndElements\n");
+  auto d = io::read_msh<3>(p);
+  BOOST_TEST_REQUIRE(d.segments().size() == 1u);
+  BOOST_TEST(d.segments()[0].name() == "body");
+  BOOST_TEST(d.segments()[0].number() == 5);
+  BOOST_TEST(d.segments()[0].num_cells() == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(vtu_structure) {
+  test::scratch_dir dir("rt_vtu");
+  auto d = finalized(sample<3>());
+  auto& s0 = d.segments()[0];
+  auto phi = add_quantity<double>(s0, on_vertices, "potential", 1.5);
+  values(s0, phi)[0] = -2.0;
+  for (auto& s : d.segments()) add_quantity<double>(s, on_cells, "volume", 0.25);
+  add_quantity<int>(d.segments()[1], on_cells, "flag", 1);
+  io::write_vtu(d, dir.file("m.vtu"));
+  const auto text = test::slurp_file(dir.file("m.vtu"));
+  for (const char* want : {"header_type=\"UInt64\"", "Name=\"segment\"", "Name=\"p doped silicon/potential\"",
+                           "Name=\"volume\"", "Name=\"oxide/flag\"", "NumberOfPoints=\"36\"", "encoding=\"raw\""})
+    BOOST_TEST(text.find(want) != std::string::npos, want);
+  // the appended block sizes add up to the data between '_' and the closing tag
+  const auto start = text.find('_', text.find("<AppendedData")) + 1;
+  const auto end = text.rfind("\n  </AppendedData>");
+  std::size_t at = start, blocks = 0;
+  while (at < end) {
+    std::uint64_t n;
+    std::memcpy(&n, text.data() + at, 8);
+    at += 8 + n;
+    ++blocks;
+  }
+  BOOST_TEST(at == end);
+  BOOST_TEST(blocks == 8u);  // potential, segment, volume, flag, points, connectivity, offsets, types
+}
+
+BOOST_AUTO_TEST_CASE(tetgen_poly_with_polygons_holes_markers_regions) {
+  test::scratch_dir dir("rt_poly");
+  // unit cube; the bottom facet has an outer loop and an inner loop (a square hole, whose hole
+  // point is listed), the top facet carries an embedded edge as a 2-vertex polygon
+  const auto p = dir.write("cube.poly",
+                           "# cube\n12 3 0 1\n"
+                           "1 0 0 0 5\n2 1 0 0 5\n3 1 1 0\n4 0 1 0\n5 0 0 1\n6 1 0 1\n7 1 1 1\n8 0 1 1\n"
+                           "9 0.25 0.25 0\n10 0.75 0.25 0\n11 0.75 0.75 0\n12 0.25 0.75 0\n"
+                           "6 1\n"
+                           "2 1 11\n4 1 2 3 4\n4 9 10 11 12\n1 0.5 0.5 0\n"
+                           "2 0 12\n4 5 6 7 8\n2 5 7\n"
+                           "1 0 13\n4 1 2 6 5\n"
+                           "1 0 14\n4 2 3 7 6\n"
+                           "1 0 15\n4 3 4 8 7\n"
+                           "1 0 16\n4 4 1 5 8\n"
+                           "1\n1 2 2 2\n"
+                           "2\n1 0.5 0.5 0.5 4 0.01\n2 0.1 0.1 0.9 9\n");
+  dir.write("cube.json", "{\"segments\": [\"a\", \"b\", \"c\", \"bulk\"], \"h\": 0.1}");
+  auto any = io::read_plc(p);
+  BOOST_TEST_REQUIRE(std::holds_alternative<plc<3>>(any));
+  const auto& g = std::get<plc<3>>(any);
+  BOOST_TEST(g.points.size() == 12u);
+  BOOST_TEST(g.point_markers[0] == 5);
+  BOOST_TEST_REQUIRE(g.facets.size() == 6u);
+  BOOST_TEST(g.facets[0].polygons.size() == 2u);
+  BOOST_TEST(g.facets[0].holes.size() == 1u);
+  BOOST_TEST(g.facets[0].marker == 11);
+  BOOST_TEST(g.facets[1].polygons.size() == 2u);
+  BOOST_TEST(g.facets[1].polygons[1].size() == 2u);
+  BOOST_TEST(g.facets[5].marker == 16);
+  BOOST_TEST(g.facets[0].polygons[1][0] == 8u);  // 1-based in the file
+  BOOST_TEST(g.holes.size() == 1u);
+  BOOST_TEST_REQUIRE(g.regions.size() == 2u);
+  BOOST_TEST(g.regions[0].number == 4);
+  BOOST_TEST(g.regions[0].max_volume == 0.01);
+  BOOST_TEST(g.regions[0].name == "bulk");
+  BOOST_TEST(g.regions[1].max_volume < 0);
+  BOOST_TEST(g.regions[1].name == "region_9");
+}
+
+BOOST_AUTO_TEST_CASE(smesh_and_triangle_poly_and_node) {
+  test::scratch_dir dir("rt_smesh");
+  dir.write("t.node", "4 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n");
+  const auto s = dir.write("t.smesh", "0 3 0 0\n4 1\n3 0 2 1 1\n3 0 1 3 2\n3 0 3 2 3\n3 1 2 3 4\n0\n0\n");
+  auto g = io::read_tetgen_poly(s);
+  BOOST_TEST(g.points.size() == 4u);
+  BOOST_TEST_REQUIRE(g.facets.size() == 4u);
+  BOOST_TEST(g.facets[3].marker == 4);
+  BOOST_TEST(io::read_node<3>(dir.file("t.node")).size() == 4u);
+  const auto t = dir.write("sq.poly", "4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n4 1\n1 1 2 7\n2 2 3 7\n3 3 4 7\n4 4 1 8\n"
+                                      "0\n1\n1 0.5 0.5 2 0.05\n");
+  auto any = io::read_plc(t);
+  BOOST_TEST_REQUIRE(std::holds_alternative<plc<2>>(any));
+  const auto& q = std::get<plc<2>>(any);
+  BOOST_TEST(q.edges.size() == 4u);
+  BOOST_TEST(q.edge_markers[3] == 8);
+  BOOST_TEST(q.regions[0].max_volume == 0.05);
+}
+
+BOOST_AUTO_TEST_CASE(off_cube) {
+  test::scratch_dir dir("rt_off");
+  const auto p = dir.write("box.off",
+                           "OFF\n# a cube\n8 6 12\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                           "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7 255 0 0\n");
+  auto any = io::read_plc(p);
+  const auto& g = std::get<plc<3>>(any);
+  BOOST_TEST(g.points.size() == 8u);
+  BOOST_TEST(g.facets.size() == 6u);
+  BOOST_TEST(g.regions.empty());
+  BOOST_TEST(io::single_segment_name(g.source) == "box");
+}
+
+namespace {
+const float tet[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+const int tri[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(stl_ascii_and_binary_merge_vertices) {
+  test::scratch_dir dir("rt_stl");
+  std::ostringstream a;
+  a << "solid tet\n";
+  for (auto& t : tri) {
+    a << "  facet normal 0 0 0\n    outer loop\n";
+    for (int v : t) a << "      vertex " << tet[v][0] << ' ' << tet[v][1] << ' ' << (v == 0 ? "-0" : std::to_string(tet[v][2])) << "\n";
+    a << "    endloop\n  endfacet\n";
+  }
+  a << "endsolid tet\n";
+  auto g = io::read_stl(dir.write("tet.stl", a.str()));
+  BOOST_TEST(g.points.size() == 4u);  // 12 corners merged; -0 equals 0
+  BOOST_TEST(g.facets.size() == 4u);
+  // binary, with a header that starts with "solid" like many exporters write
+  std::string b(80, ' ');
+  std::memcpy(b.data(), "solid but binary", 16);
+  std::uint32_t n = 4;
+  b.append(reinterpret_cast<const char*>(&n), 4);
+  for (auto& t : tri) {
+    float rec[12] = {};
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) rec[3 + 3 * k + c] = tet[t[k]][c];
+    b.append(reinterpret_cast<const char*>(rec), sizeof rec);
+    b.append(2, '\0');
+  }
+  auto any = io::read_plc(dir.write("tetb.stl", b));
+  const auto& h = std::get<plc<3>>(any);
+  BOOST_TEST(h.points.size() == 4u);
+  BOOST_TEST(h.facets.size() == 4u);
+  BOOST_TEST(h.regions.empty());
+}
+
+BOOST_AUTO_TEST_CASE(failed_write_leaves_no_file) {
+  test::scratch_dir dir("rt_atomic");
+  auto d = finalized(sample<3>());
+  d.segments()[1].set_number(7);  // duplicate numbers cannot be written
+  BOOST_CHECK_THROW(io::write_msh(d, dir.file("bad.msh")), io::io_error);
+  BOOST_CHECK_THROW(io::write_node_ele(d, dir.file("bad")), io::io_error);
+  BOOST_CHECK_THROW(io::write_vtu(d, dir.file("bad.vtu")), io::io_error);
+  d.segments()[1].set_number(3);
+  d.segments()[1].set_name("has \"quote\"");
+  BOOST_CHECK_THROW(io::write_msh(d, dir.file("bad.msh")), io::io_error);
+  {  // an exception while writing discards the temporary
+    io::atomic_file f(dir.file("partial.txt"));
+    f.stream() << "half";
+  }
+  BOOST_CHECK_THROW(io::write_atomically(dir.file("thrown.txt"), [](std::ostream& o) {
+                      o << "x";
+                      throw std::runtime_error("writer failed");
+                    }), std::runtime_error);
+  // an existing file is replaced only by a complete one
+  io::write_atomically(dir.file("kept.txt"), [](std::ostream& o) { o << "old"; });
+  BOOST_CHECK_THROW(io::write_atomically(dir.file("kept.txt"), [](std::ostream&) { throw std::runtime_error("x"); }),
+                    std::runtime_error);
+  BOOST_TEST(test::slurp_file(dir.file("kept.txt")) == "old");
+  std::size_t files = 0;
+  for ([[maybe_unused]] auto& e : std::filesystem::directory_iterator(dir.path)) ++files;
+  BOOST_TEST(files == 1u);  // only kept.txt: no output, no temporaries
+  BOOST_CHECK_THROW(io::write_vtu(finalized(sample<3>()), dir.file("no/such/dir/m.vtu")), io::io_error);
+}
