@@ -92,13 +92,18 @@ class state {
   void presplit_edges() {
     if (opt_.size <= 0) return;
     for (std::uint32_t e = 0; e < edges_.size(); ++e) {
-      const point<D> a = out_.points[edges_[e].u], b = out_.points[edges_[e].v];
+      // from the lexicographically smaller end, so parallel edges get identical (mirror) splits
+      point<D> a = out_.points[edges_[e].u], b = out_.points[edges_[e].v];
+      if (lex_less(b, a)) std::swap(a, b);
       const auto n = static_cast<int>(std::ceil(distance(a, b) / opt_.size - 1e-9));
-      std::vector<vertex_id> chain{edges_[e].u};
+      std::vector<vertex_id> inner;
       for (int i = 1; i < n; ++i) {
         const double t = static_cast<double>(i) / n;
-        chain.push_back(add_point(snap_to_edge(a + t * (b - a), a, b), {home::edge, e}));
+        inner.push_back(add_point(snap_to_edge(a + t * (b - a), a, b), {home::edge, e}));
       }
+      if (out_.points[edges_[e].u] != a) std::reverse(inner.begin(), inner.end());
+      std::vector<vertex_id> chain{edges_[e].u};
+      chain.insert(chain.end(), inner.begin(), inner.end());
       chain.push_back(edges_[e].v);
       edges_[e].chain = std::move(chain);
     }
@@ -190,18 +195,37 @@ class state {
       std::optional<point2> sv;
       if (shared) sv = *shared;
       const std::array<point2, 2> s{elem[0], elem[1]};
-      if (auto c = rules::split_point(*r, std::span<const point2, 2>(s), enc, sv)) return c->at;
+      if (auto c = rules::split_point(*r, std::span<const point2, 2>(s), enc, sv))
+        return c->action == rules::split_action::project ? exact_projection(c->at, elem, enc) : c->at;
     } else {
       rules::shared3 sh;
       if (shared) sh.vertex = *shared;
       if (shared_edge) sh.edge = *shared_edge;
-      if (auto c = rules::split_point(*r, std::span<const point3>(elem), enc, sh)) return c->at;
+      if (auto c = rules::split_point(*r, std::span<const point3>(elem), enc, sh))
+        return c->action == rules::split_action::project ? exact_projection(c->at, elem, enc) : c->at;
     }
     // the validator guarantees a final unconditional midpoint; reaching here means a custom set
     // without it
     point<D> m{};
     for (const auto& q : elem) m = m + (1.0 / static_cast<double>(elem.size())) * q;
     return m;
+  }
+
+  /// On an axis-aligned element the orthogonal projection of p only replaces the element's constant
+  /// coordinates: done that way it is exact, so a point and its projection on a parallel carrier
+  /// are exact mirror images (rounding would leave them an ulp apart and make flat slivers).
+  static point<D> exact_projection(const point<D>& rounded, const std::vector<point<D>>& elem, const point<D>& p) {
+    point<D> q = p;
+    std::size_t varying = 0;
+    for (std::size_t k = 0; k < D; ++k) {
+      bool constant = true;
+      for (const auto& e : elem) constant = constant && e[k] == elem[0][k];
+      if (constant)
+        q[k] = elem[0][k];
+      else
+        ++varying;
+    }
+    return varying + 1 == elem.size() ? q : rounded;
   }
 
   /// Coordinates that are constant along the carrier stay exact, so split points of axis-aligned

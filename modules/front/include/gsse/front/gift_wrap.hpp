@@ -114,12 +114,11 @@ class gift_wrapper {
     const auto pr = k_.prepare(f);
     coord lo, hi;
     k_.seed(pr, lo, hi);
-    // phase 1: the best-ranked vertex (double hint) of a growing box that is exactly on the
-    // positive side
+    // phase 1: the best-ranked vertex (double hint only) of a growing box that is exactly on the
+    // positive side; any such vertex will do, phase 2 makes the exact choice
     double best_t = std::numeric_limits<double>::infinity();
     for (;;) {
       grid_.visit_box(lo, hi, [&](vertex_id y, const coord& q) {
-        ++stats_.visits;
         const double t = K::estimate(pr, q);
         if (!(t < best_t) || in_face(f, y)) return true;
         ++stats_.side_tests;
@@ -129,29 +128,35 @@ class gift_wrapper {
         return true;
       });
       if (best != no_vertex) break;
-      // nothing ranked finite: fall back to exact side tests over the box before growing it
-      grid_.visit_box(lo, hi, [&](vertex_id y, const coord&) {
-        if (in_face(f, y)) return true;
-        ++stats_.side_tests;
-        if (k_.side(f, y) <= 0) return true;
-        ++stats_.candidate_tests;
-        if (best == no_vertex || k_.beats(f, best, y)) best = y;
-        return true;
-      });
-      if (best != no_vertex) break;
       bool covers = true;
+      for (std::size_t a = 0; a < G; ++a) covers &= lo[a] <= grid_.lower()[a] && hi[a] >= grid_.upper()[a];
+      if (covers) {
+        // no vertex ranks finite (all nearly in the face's plane): take any exactly positive one
+        grid_.visit_box(lo, hi, [&](vertex_id y, const coord&) {
+          if (in_face(f, y)) return true;
+          ++stats_.side_tests;
+          if (k_.side(f, y) <= 0) return true;
+          best = y;
+          return false;
+        });
+        if (best == no_vertex) throw front_error(label + ": no vertex on the inner side of face " + describe(f));
+        break;
+      }
       for (std::size_t a = 0; a < G; ++a) {
-        covers &= lo[a] <= grid_.lower()[a] && hi[a] >= grid_.upper()[a];
         const double w = 0.5 * (hi[a] - lo[a]);  // double the box width
         lo[a] -= w;
         hi[a] += w;
       }
-      if (covers) throw front_error(label + ": no vertex on the inner side of face " + describe(f));
     }
-    // phase 2: scan the current best ball (double, enlarged), switching to any vertex that is
-    // exactly inside it; the double ball only prunes, the exact predicates decide
-    for (bool changed = true; changed;) {
-      changed = false;
+    // phase 2: scan the current best ball (double, padded so it contains the exact one).
+    // While some vertex in it ranks clearly better by the double hint, jump to the best-ranked
+    // one (exactly on the positive side): the ball shrinks fast without exact in-ball tests.
+    // When none does, the vertices left in the padded ball (near ties and rounding cases) are
+    // decided exactly; an exact improvement restarts the loop. The hint only orders the search:
+    // the result is the vertex no other beats exactly.
+    best_t = K::estimate(pr, k_.grid_coord(best));
+    std::vector<vertex_id> near;
+    for (;;) {
       coord c;
       double r = 0;
       const bool reliable = k_.ball(f, best, c, r);
@@ -165,6 +170,10 @@ class gift_wrapper {
         hi = grid_.upper();
       }
       const double r2 = r * r;
+      const double margin = 1e-9 * (std::abs(best_t) + pr.l);
+      vertex_id jump = no_vertex;
+      double jump_t = best_t - margin;
+      near.clear();
       grid_.visit_box(lo, hi, [&](vertex_id y, const coord& q) {
         ++stats_.visits;
         if (reliable) {
@@ -173,14 +182,41 @@ class gift_wrapper {
           if (d2 > r2) return true;
         }
         if (y == best || in_face(f, y)) return true;
-        ++stats_.side_tests;
-        if (k_.side(f, y) <= 0) return true;
-        ++stats_.candidate_tests;
-        if (!k_.beats(f, best, y)) return true;
-        best = y;
-        changed = true;
-        return false;  // restart with the smaller ball
+        const double t = K::estimate(pr, q);
+        if (t < jump_t) {
+          ++stats_.side_tests;
+          if (k_.side(f, y) > 0) {
+            if (jump != no_vertex) near.push_back(jump);
+            jump = y;
+            jump_t = t;
+            return true;
+          }
+        }
+        near.push_back(y);
+        return true;
       });
+      // every move is an exact improvement, so the walk cannot cycle
+      if (jump != no_vertex) {
+        ++stats_.candidate_tests;
+        if (k_.beats(f, best, jump)) {
+          best = jump;
+          best_t = jump_t;
+          continue;
+        }
+        near.push_back(jump);
+      }
+      bool changed = false;
+      for (vertex_id y : near) {
+        ++stats_.side_tests;
+        if (k_.side(f, y) <= 0) continue;
+        ++stats_.candidate_tests;
+        if (k_.beats(f, best, y)) {
+          best = y;
+          changed = true;
+        }
+      }
+      if (!changed) break;
+      best_t = K::estimate(pr, k_.grid_coord(best));
     }
     return best;
   }
