@@ -45,17 +45,13 @@ int run(const gsse::plc<D>& p, const args& a) {
   gsse::pipeline::options o;
   o.size = a.size;
   o.threads = a.threads;
+  o.verify = a.verify;
   o.conform.max_steiner = a.max_steiner;
   if (tty) o.progress = [](const std::string& s) { std::fprintf(stderr, "\r\033[Kgsse-mesh: %s", s.c_str()); };
   gsse::pipeline::report r;
   auto d = gsse::pipeline::mesh(p, cloud, o, r);
   if (tty) std::fprintf(stderr, "\r\033[K");
-  std::vector<std::string> problems;
-  if (a.verify) {
-    const auto t0 = std::chrono::steady_clock::now();
-    problems = gsse::pipeline::verify(d);
-    r.times.push_back({"verify", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});
-  }
+  const std::vector<std::string>& problems = r.problems;
   if (!a.output.empty() && problems.empty()) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::string& out = a.output;
@@ -82,6 +78,9 @@ int run(const gsse::plc<D>& p, const args& a) {
       std::printf("  segment %2d %-16s %8zu vertices %9zu %s\n", s.number(), s.name().c_str(), used.size(), c.size(),
                   D == 3 ? "tetrahedra" : "triangles");
     }
+    const auto q = gsse::pipeline::measure(d);
+    std::printf("  quality: radius-edge ratio min %.3f median %.3f max %.3g; %s angle min %.2f max %.2f degrees\n",
+                q.min_ratio, q.median_ratio, q.max_ratio, D == 3 ? "dihedral" : "plane", q.min_angle, q.max_angle);
     for (const auto& t : r.times) std::printf("  %-8s %8.3f s\n", t.stage.c_str(), t.seconds);
     if (a.verify) std::printf("verify: %s\n", problems.empty() ? "PASS" : "FAIL");
   }

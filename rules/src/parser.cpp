@@ -1,5 +1,6 @@
 // Parser of the rule language: line oriented, '#' comments, ',' separates coordinate tuples.
 // Names inside a front rule are resolved at its 'end', so statements may come in any order.
+#include <limits>
 #include <charconv>
 #include <cmath>
 #include <optional>
@@ -197,7 +198,7 @@ class parser {
       if (l.tok.size() < 2) fail(l.line, "'try': missing action");
       const auto a = split_action_from(l.tok[1]);
       if (!a) fail(l.line, "unknown action '" + l.tok[1] + "' (expected project, rotate-vertex, rotate-edge or midpoint)");
-      split_step s{*a, 0, false, l.line};
+      split_step s{*a, -std::numeric_limits<double>::infinity(), false, l.line};  // no bound unless given
       for (std::size_t i = 2; i < l.tok.size(); ++i) {
         if (l.tok[i] == "inside") s.inside = true;
         else if (l.tok[i] == "min-gap") s.min_gap = number(l, ++i);

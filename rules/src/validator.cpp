@@ -41,7 +41,7 @@ struct checker {
         if (st.action == split_action::project && r.rel == relation::on_carrier)
           report(st.line, who + ": project of a vertex on the carrier returns the vertex itself");
         const double gmax = r.kind == element_kind::subsegment ? 0.5 : 1.0 / 3;
-        if (!(st.min_gap >= 0 && st.min_gap < gmax))
+        if (std::isfinite(st.min_gap) && !(st.min_gap >= 0 && st.min_gap < gmax))
           report(st.line, who + ": min-gap must be in [0, " + (r.kind == element_kind::subsegment ? "0.5" : "1/3") + ")");
       }
       if (!r.steps.empty()) {

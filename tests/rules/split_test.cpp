@@ -138,8 +138,17 @@ BOOST_AUTO_TEST_CASE(subfacet_free_vertex_is_projected) {
   BOOST_TEST(std::abs(u[2] - 0.25) < 1e-12);
 }
 
-BOOST_AUTO_TEST_CASE(subfacet_projection_outside_falls_back_to_circumcentre) {
-  const auto c = split_point(rule3(element_kind::subfacet, relation::free), tri, {0.9, 0.9, 0.3});
+BOOST_AUTO_TEST_CASE(subfacet_projection_outside_the_subfacet) {
+  // The default 3D set projects onto the facet plane without a containment condition (the
+  // conformer checks the facet itself), so a projection outside the subfacet is kept ...
+  auto c = split_point(rule3(element_kind::subfacet, relation::free), tri, {0.9, 0.9, 0.3});
+  BOOST_REQUIRE(c);
+  BOOST_TEST(near(c->at, point3{0.9, 0.9, 0}));
+  BOOST_TEST((c->action == split_action::project));
+  // ... while a rule that asks for `inside` falls back to the circumcentre
+  const auto custom = parse_rules(
+      "dimension 3\nsplit f\n element subfacet\n relation free\n try project inside\n try midpoint\nend\n", "custom.rules");
+  c = split_point(*custom.split.lookup(element_kind::subfacet, relation::free), tri, {0.9, 0.9, 0.3});
   BOOST_REQUIRE(c);
   BOOST_TEST(near(c->at, point3{0.5, 0.5, 0}));  // right triangle: hypotenuse midpoint
   BOOST_TEST((c->action == split_action::midpoint));

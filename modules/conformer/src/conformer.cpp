@@ -1,6 +1,8 @@
 #include "gsse/conformer/conformer.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <set>
 
@@ -201,8 +203,17 @@ class state {
       rules::shared3 sh;
       if (shared) sh.vertex = *shared;
       if (shared_edge) sh.edge = *shared_edge;
-      if (auto c = rules::split_point(*r, std::span<const point3>(elem), enc, sh))
+      if (auto c = rules::split_point(*r, std::span<const point3>(elem), enc, sh)) {
+        if (std::getenv("GSSE_CONFORM_DEBUG") && kind == element_kind::subfacet && rel == relation::free && c->action != rules::split_action::project) {
+          static int shown = 0;
+          if (shown++ < 4) {
+            auto u = rules::unit_coordinates(std::span<const point3>(elem), enc);
+            std::fprintf(stderr, "proj fail: el (%g %g %g) (%g %g %g) (%g %g %g) enc (%g %g %g) u %g %g %g cand %d\n", elem[0][0], elem[0][1], elem[0][2], elem[1][0], elem[1][1], elem[1][2], elem[2][0], elem[2][1], elem[2][2], enc[0], enc[1], enc[2], u[0], u[1], u[2], (int)rules::split_candidate(rules::split_action::project, std::span<const point3>(elem), enc, sh).has_value());
+          }
+        }
+        if (std::getenv("GSSE_CONFORM_TRACE")) ++trace_[std::string(rules::to_string(kind)) + "/" + std::string(rules::to_string(rel)) + "/" + std::string(rules::to_string(c->action))];
         return c->action == rules::split_action::project ? exact_projection(c->at, elem, enc) : c->at;
+      }
     }
     // the validator guarantees a final unconditional midpoint; reaching here means a custom set
     // without it
@@ -259,6 +270,10 @@ class state {
           }
           split_segment(e, i, y);  // then re-check the first half, now at position i
           ++splits;
+          if (std::getenv("GSSE_CONFORM_DEBUG") && splits % 2000 == 0) {
+            const auto& q = out_.points[edges_[e].chain[i + 1]];
+            std::fprintf(stderr, "seg split %zu on edge %u (%u-%u) at %.17g %.17g %.17g by %u (home %d/%u)\n", splits, e, edges_[e].u, edges_[e].v, q[0], q[1], q[D - 1], y, (int)out_.homes[y].kind, out_.homes[y].id);
+          }
           again = true;
         }
     }
@@ -277,6 +292,7 @@ class state {
   std::map<std::pair<vertex_id, vertex_id>, std::uint32_t> edge_index_;
   std::map<vertex_id, std::vector<std::uint32_t>> vertex_edges_;
   std::vector<vertex_id> ties_;
+  std::map<std::string, std::size_t> trace_;
 
  public:
   detail::spatial_hash<D>& grid() { return grid_; }
@@ -652,15 +668,24 @@ class state3 : public state<3> {
       seed_facets();
     }
     std::vector<std::size_t> seen(facets_.size(), 0);
+    const bool trace = std::getenv("GSSE_CONFORM_TRACE") != nullptr;
     for (;;) {
       ++out_.rounds;
-      conform_segments();
+      const std::size_t seg_splits = conform_segments();
       for (std::uint32_t f = 0; f < facets_.size(); ++f)
         if (vertex_count(f) != seen[f]) {  // only facets whose vertex set changed
           triangulate(f);
           seen[f] = vertex_count(f);
         }
-      if (conform_facets() == 0) break;
+      const std::size_t facet_splits = conform_facets();
+      if (trace)
+        std::fprintf(stderr, "conform round %zu: %zu subsegment splits, %zu subfacet splits, %zu points\n", out_.rounds,
+                     seg_splits, facet_splits, out_.points.size());
+      if (trace) {
+        for (auto& [k, n] : trace_) std::fprintf(stderr, "   %s %zu\n", k.c_str(), n);
+        trace_.clear();
+      }
+      if (facet_splits == 0) break;
     }
     for (std::uint32_t f = 0; f < facets_.size(); ++f)
       for (const auto& t : facets_[f].triangles) {

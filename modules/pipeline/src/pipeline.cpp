@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <numbers>
+#include <numeric>
 #include <set>
 
 #include "gsse/front/front_mesher.hpp"
@@ -16,6 +18,11 @@ namespace {
 
 template <std::size_t D>
 using cell_t = std::array<vertex_id, D + 1>;
+
+/// True if q lies in the closed cell c (on its boundary counts: a point on an inner face of the
+/// coarse mesh is inside the domain; one on the PLC becomes a boundary vertex in the conformer).
+template <std::size_t D>
+bool inside_cell(const std::vector<point<D>>& p, const cell_t<D>& c, const point<D>& q);
 
 /// Faces of region r oriented with r on their positive side.
 template <std::size_t D>
@@ -53,13 +60,16 @@ std::vector<std::vector<cell_t<D>>> wrap_all(const conformer::boundary<D>& b, co
 template <std::size_t D>
 bool inside_cell(const std::vector<point<D>>& p, const cell_t<D>& c, const point<D>& q) {
   if constexpr (D == 2) {
-    return geometry::orient2d(p[c[0]], p[c[1]], q) > 0 && geometry::orient2d(p[c[1]], p[c[2]], q) > 0 &&
-           geometry::orient2d(p[c[2]], p[c[0]], q) > 0;
+    return geometry::orient2d(p[c[0]], p[c[1]], q) >= 0 && geometry::orient2d(p[c[1]], p[c[2]], q) >= 0 &&
+           geometry::orient2d(p[c[2]], p[c[0]], q) >= 0;
   } else {
-    return geometry::orient3d(p[c[1]], p[c[2]], p[c[3]], q) * geometry::orient3d(p[c[1]], p[c[2]], p[c[3]], p[c[0]]) > 0 &&
-           geometry::orient3d(p[c[0]], p[c[2]], p[c[3]], q) * geometry::orient3d(p[c[0]], p[c[2]], p[c[3]], p[c[1]]) > 0 &&
-           geometry::orient3d(p[c[0]], p[c[1]], p[c[3]], q) * geometry::orient3d(p[c[0]], p[c[1]], p[c[3]], p[c[2]]) > 0 &&
-           geometry::orient3d(p[c[0]], p[c[1]], p[c[2]], q) * geometry::orient3d(p[c[0]], p[c[1]], p[c[2]], p[c[3]]) > 0;
+    // cells are positively oriented and each reference facet faces into its cell: q is in the
+    // closed cell if no facet has it strictly on its outer side
+    for (const auto& f : reference_simplex<3>::facet_vertices)
+      if (geometry::orient3d(p[c[static_cast<std::size_t>(f[0])]], p[c[static_cast<std::size_t>(f[1])]],
+                             p[c[static_cast<std::size_t>(f[2])]], q) < 0)
+        return false;
+    return true;
   }
 }
 
@@ -197,6 +207,7 @@ domain<D> mesh_segments<D>::operator()(const conformer::boundary<D>& b, const co
     }
   }
   d.sync_slots();
+  for (auto& s : d.segments()) s.finalize();  // neighbours and vertex-to-cell incidence for users
   return d;
 }
 
@@ -339,9 +350,65 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   lap("label");
   auto d = mesh_segments<D>{}(b, l, o.threads);
   lap("mesh");
+  if (o.verify) {
+    r.problems = verify(d, &b, &l);
+    lap("verify");
+  }
   return d;
 }
 
+template <std::size_t D>
+quality measure(const domain<D>& d) {
+  quality q;
+  std::vector<double> ratios;
+  q.min_angle = 180;
+  const auto& p = d.points();
+  const double rad = 180 / std::numbers::pi;
+  for (const auto& s : d.segments())
+    for (const auto& c : s.cell_data()) {
+      double shortest = 1e300;
+      for (std::size_t i = 0; i <= D; ++i)
+        for (std::size_t j = i + 1; j <= D; ++j) shortest = std::min(shortest, distance(p[c[i]], p[c[j]]));
+      double r;
+      if constexpr (D == 2) {
+        const double a = distance(p[c[1]], p[c[2]]), b = distance(p[c[0]], p[c[2]]), e = distance(p[c[0]], p[c[1]]);
+        const point2 u = p[c[1]] - p[c[0]], v = p[c[2]] - p[c[0]];
+        const double area = 0.5 * std::abs(u[0] * v[1] - u[1] * v[0]);
+        r = a * b * e / (4 * area);
+        for (std::size_t i = 0; i < 3; ++i) {
+          const point2 x = p[c[(i + 1) % 3]] - p[c[i]], y = p[c[(i + 2) % 3]] - p[c[i]];
+          const double ang = std::acos(std::clamp(dot(x, y) / std::sqrt(dot(x, x) * dot(y, y)), -1.0, 1.0)) * rad;
+          q.min_angle = std::min(q.min_angle, ang), q.max_angle = std::max(q.max_angle, ang);
+        }
+      } else {
+        const point3 u = p[c[1]] - p[c[0]], v = p[c[2]] - p[c[0]], w = p[c[3]] - p[c[0]];
+        const double det = dot(u, cross(v, w));
+        const point3 cc = (1.0 / (2 * det)) * (dot(u, u) * cross(v, w) + dot(v, v) * cross(w, u) + dot(w, w) * cross(u, v));
+        r = std::sqrt(dot(cc, cc));
+        // dihedral angle at edge (i,j): between the faces opposite k and l
+        for (std::size_t i = 0; i < 4; ++i)
+          for (std::size_t j = i + 1; j < 4; ++j) {
+            std::size_t k = 0;
+            while (k == i || k == j) ++k;
+            std::size_t l = 6 - i - j - k;
+            const point3 e = p[c[j]] - p[c[i]];
+            const point3 n1 = cross(e, p[c[k]] - p[c[i]]), n2 = cross(e, p[c[l]] - p[c[i]]);
+            const double ang = std::acos(std::clamp(dot(n1, n2) / std::sqrt(dot(n1, n1) * dot(n2, n2)), -1.0, 1.0)) * rad;
+            q.min_angle = std::min(q.min_angle, ang), q.max_angle = std::max(q.max_angle, ang);
+          }
+      }
+      ratios.push_back(r / shortest);
+    }
+  q.elements = ratios.size();
+  if (!ratios.empty()) {
+    std::sort(ratios.begin(), ratios.end());
+    q.min_ratio = ratios.front(), q.max_ratio = ratios.back(), q.median_ratio = ratios[ratios.size() / 2];
+  }
+  return q;
+}
+
+template quality measure<2>(const domain<2>&);
+template quality measure<3>(const domain<3>&);
 template struct size_points<2>;
 template struct size_points<3>;
 template struct mesh_segments<2>;

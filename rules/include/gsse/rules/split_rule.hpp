@@ -3,6 +3,7 @@
 // The conformer classifies the encroachment as (element kind, relation), looks the rule up and
 // tries its actions in order; the first candidate that passes its acceptance conditions wins.
 #include <array>
+#include <limits>
 #include <cstddef>
 #include <optional>
 #include <span>
@@ -35,7 +36,9 @@ enum class split_action {
 /// (subsegment: parameter t in [0,1]; subfacet: barycentric coordinates).
 struct split_step {
   split_action action = split_action::midpoint;
-  double min_gap = 0;   // every unit coordinate >= min_gap (t in [g, 1-g] for a subsegment)
+  // every unit coordinate >= min_gap (t in [g, 1-g] for a subsegment); without `min-gap` there
+  // is no bound: the point may lie anywhere on the element's carrier (line or plane)
+  double min_gap = -std::numeric_limits<double>::infinity();
   bool inside = false;  // every unit coordinate > 0 (strictly inside the element)
   int line = 0;
 };

@@ -14,6 +14,7 @@
 // best ball and switches to any vertex inside it. Within the pencil of balls through f, on the
 // positive side, a better ball is contained in the worse one, so the scan may shrink as it goes
 // and never misses a vertex. Decisions are exact; the double ball only bounds the scan region.
+#include <algorithm>
 #include <deque>
 #include <limits>
 #include <stdexcept>
@@ -156,6 +157,12 @@ class gift_wrapper {
     // the result is the vertex no other beats exactly.
     best_t = K::estimate(pr, k_.grid_coord(best));
     std::vector<vertex_id> near;
+    // Points of a slanted facet are coplanar only up to rounding; there "beats" need not be a
+    // strict order, so a walk could cycle. It never returns to an earlier best: it terminates, and
+    // the conformer's exact post-check judges the result.
+    visited_.clear();
+    visited_.push_back(best);
+    auto fresh = [&](vertex_id y) { return std::find(visited_.begin(), visited_.end(), y) == visited_.end(); };
     for (;;) {
       coord c;
       double r = 0;
@@ -198,9 +205,10 @@ class gift_wrapper {
       // every move is an exact improvement, so the walk cannot cycle
       if (jump != no_vertex) {
         ++stats_.candidate_tests;
-        if (k_.beats(f, best, jump)) {
+        if (fresh(jump) && k_.beats(f, best, jump)) {
           best = jump;
           best_t = jump_t;
+          visited_.push_back(best);
           continue;
         }
         near.push_back(jump);
@@ -210,8 +218,9 @@ class gift_wrapper {
         ++stats_.side_tests;
         if (k_.side(f, y) <= 0) continue;
         ++stats_.candidate_tests;
-        if (k_.beats(f, best, y)) {
+        if (fresh(y) && k_.beats(f, best, y)) {
           best = y;
+          visited_.push_back(best);
           changed = true;
         }
       }
@@ -242,6 +251,7 @@ class gift_wrapper {
   const K& k_;
   const point_grid<G>& grid_;
   wrap_stats stats_;
+  std::vector<vertex_id> visited_;
 };
 
 }  // namespace gsse::front

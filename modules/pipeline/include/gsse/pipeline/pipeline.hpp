@@ -19,6 +19,7 @@ namespace gsse::pipeline {
 struct options {
   double size = 0;       // target element size H; 0: no sizing (boundary conforming only)
   unsigned threads = 1;  // threads for the per-segment meshing
+  bool verify = false;   // run the verifier (with the conformed boundary and labels) at the end
   conformer::options conform{};
   std::function<void(const std::string&)> progress;  // stage messages, may be empty
 };
@@ -31,6 +32,7 @@ struct stage_time {
 struct report {
   std::vector<stage_time> times;
   std::size_t volume_points = 0, dropped_points = 0, steiner = 0;
+  std::vector<std::string> problems;  // from the verifier, when options::verify
 };
 
 /// Stage: interior points about H apart (BCC lattice in 3D, triangular in 2D), clipped to the
@@ -65,6 +67,16 @@ struct mesh_segments {
 template <std::size_t D>
 std::vector<std::string> verify(const domain<D>& d, const conformer::boundary<D>* b = nullptr,
                                 const conformer::labelling* l = nullptr);
+
+/// Element quality: radius-edge ratio (circumradius / shortest edge; 0.577 for the equilateral
+/// triangle, 0.612 for the regular tetrahedron) and angles (dihedral in 3D, plane in 2D), degrees.
+struct quality {
+  double min_ratio = 0, median_ratio = 0, max_ratio = 0;
+  double min_angle = 0, max_angle = 0;
+  std::size_t elements = 0;
+};
+template <std::size_t D>
+quality measure(const domain<D>& d);
 
 /// All stages in order.
 template <std::size_t D>

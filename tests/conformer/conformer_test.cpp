@@ -1,0 +1,204 @@
+#define BOOST_TEST_MODULE conformer
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "gsse/conformer/conformer.hpp"
+#include "gsse/conformer/regions.hpp"
+#include "gsse/io/poly.hpp"
+#include "gsse/pipeline/pipeline.hpp"
+#include "support/shared.hpp"
+
+using namespace gsse;
+namespace cf = gsse::conformer;
+
+namespace {
+
+/// Conforms, then requires the exact post-check to pass and labelling to succeed. Returns the
+/// number of Steiner points (reported in the log for docs/benchmarks.md).
+template <std::size_t D>
+std::size_t conform_and_check(const plc<D>& p, const std::vector<point<D>>& volume, double size,
+                              const std::string& what) {
+  cf::options o;
+  o.size = size;
+  const auto b = cf::conform(p, volume, o);
+  const auto bad = cf::encroached(b);
+  BOOST_TEST(bad.empty(), what << ": " << bad.size() << " encroached elements");
+  BOOST_CHECK_NO_THROW(cf::label(b, p));
+  BOOST_TEST_MESSAGE("steiner " << what << " size=" << size << " volume=" << volume.size() << ": " << b.steiner
+                                << " Steiner points, " << b.faces.size() << " faces, " << b.rounds << " rounds");
+  return b.steiner;
+}
+
+plc<2> wedge_2d(double degrees) {
+  const double a = degrees * std::numbers::pi / 180;
+  plc<2> p;
+  p.source = "wedge";
+  p.points = {{0, 0}, {1, 0}, {std::cos(a), std::sin(a)}};
+  p.edges = {{0, 1}, {1, 2}, {2, 0}};
+  p.edge_markers = {0, 0, 0};
+  p.regions.push_back({{0.6, 0.3 * std::sin(a)}, 1, -1, "wedge"});
+  return p;
+}
+
+plc<3> prism(const std::vector<point2>& section, double height, const std::string& name) {
+  plc<3> p;
+  p.source = name;
+  const auto n = static_cast<vertex_id>(section.size());
+  for (const auto& q : section) p.points.push_back({q[0], q[1], 0});
+  for (const auto& q : section) p.points.push_back({q[0], q[1], height});
+  plc_facet bottom, top;
+  for (vertex_id i = 0; i < n; ++i) bottom.polygons.emplace_back(), top.polygons.emplace_back();
+  bottom.polygons = {{}};
+  top.polygons = {{}};
+  for (vertex_id i = 0; i < n; ++i) {
+    bottom.polygons[0].push_back(i);
+    top.polygons[0].push_back(n + i);
+    p.facets.push_back({{{i, (i + 1) % n, n + (i + 1) % n, n + i}}, {}, 0, 0});
+  }
+  p.facets.push_back(bottom);
+  p.facets.push_back(top);
+  point3 c{0, 0, height / 2};
+  for (const auto& q : section) c[0] += q[0] / static_cast<double>(n), c[1] += q[1] / static_cast<double>(n);
+  p.regions.push_back({c, 1, -1, name});
+  return p;
+}
+
+/// Two stacked boxes [0,1]^2 x [-1,0] and [0,1]^2 x [0,t], sharing the face z = 0.
+plc<3> stacked(double t) {
+  plc<3> p;
+  p.source = "stacked";
+  for (double z : {-1.0, 0.0, t})
+    for (int k = 0; k < 4; ++k) p.points.push_back({double(k == 1 || k == 2), double(k >= 2), z});
+  auto quad = [&](vertex_id a, vertex_id b, vertex_id c, vertex_id d) { p.facets.push_back({{{a, b, c, d}}, {}, 0, 0}); };
+  for (vertex_id layer = 0; layer < 3; ++layer) quad(4 * layer, 4 * layer + 1, 4 * layer + 2, 4 * layer + 3);
+  for (vertex_id layer = 0; layer < 2; ++layer)
+    for (vertex_id k = 0; k < 4; ++k) {
+      const vertex_id a = 4 * layer + k, b = 4 * layer + (k + 1) % 4;
+      quad(a, b, b + 4, a + 4);
+    }
+  p.regions.push_back({{0.5, 0.5, -0.5}, 1, -1, "silicon"});
+  p.regions.push_back({{0.5, 0.5, t / 2}, 2, -1, "oxide"});
+  return p;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(bundled_examples) {
+  for (const char* name : {"mosfet2d", "mosfet", "stack"}) {
+    const auto path = std::string(GSSE_SOURCE_DIR) + "/examples/" + name + ".poly";
+    std::visit([&](const auto& p) { conform_and_check(p, {}, 0.0, name); conform_and_check(p, {}, 0.1, name); },
+               io::read_plc(path));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(bench_structures_with_and_without_cloud) {
+  const auto shared = test::shared_dir();
+  if (!shared) {
+    BOOST_TEST_MESSAGE("SKIPPED: ../shared absent (bench structures)");
+    return;
+  }
+  for (const char* s : {"mosfet", "diffusion", "trench", "finfet"})
+    for (int dim : {2, 3}) {
+      const auto path = test::bench_structure(*shared, s, dim, dim == 3 ? 2000 : 500);
+      const auto base = path.substr(0, path.size() - 5);
+      std::visit(
+          [&](const auto& p) {
+            constexpr std::size_t D = std::remove_cvref_t<decltype(p)>::dimension;
+            conform_and_check(p, {}, 0.0, std::string(s) + std::to_string(D) + "d");
+            // the cloud, inside the silicon, as volume points
+            const auto cloud = io::read_node<D>(base + ".cloud.node");
+            conform_and_check(p, cloud, 0.0, std::string(s) + std::to_string(D) + "d+cloud");
+          },
+          io::read_plc(path));
+    }
+}
+
+BOOST_AUTO_TEST_CASE(small_angles_2d) {
+  for (double deg : {1.0, 5.0, 30.0}) {
+    const auto p = wedge_2d(deg);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<point2> inside;
+    const double a = deg * std::numbers::pi / 180;
+    for (int i = 0; i < 200; ++i) {
+      const double r = u(rng) * 0.95, t = u(rng) * a;
+      inside.push_back({r * std::cos(t), r * std::sin(t)});
+    }
+    conform_and_check(p, {}, 0.0, "wedge " + std::to_string(deg));
+    conform_and_check(p, inside, 0.0, "wedge+points " + std::to_string(deg));
+    conform_and_check(p, {}, 0.05, "wedge sized " + std::to_string(deg));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(dihedral_5_degrees_3d) {
+  const double a = 5 * std::numbers::pi / 180;
+  const auto p = prism({{0, 0}, {1, 0}, {std::cos(a), std::sin(a)}}, 0.5, "wedge5");
+  conform_and_check(p, {}, 0.0, "dihedral 5");
+  // Known limitation: with a target size (facet lattices on both slanted facets) this case does
+  // not finish in reasonable time yet; see docs/benchmarks.md. It is exercised without sizing.
+  std::vector<point3> inside;
+  for (int i = 1; i < 6; ++i) inside.push_back({0.15 * i, 0.15 * i * std::tan(a) * 0.5, 0.1 * i});
+  conform_and_check(p, inside, 0.0, "dihedral 5 + points");
+}
+
+BOOST_AUTO_TEST_CASE(thin_layer) {
+  const auto p = stacked(1e-3);  // 1e-3 of the domain size
+  conform_and_check(p, {}, 0.0, "thin layer");
+  conform_and_check(p, {}, 0.25, "thin layer sized");
+}
+
+BOOST_AUTO_TEST_CASE(cloud_points_near_a_facet) {
+  const auto p = stacked(0.5);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.05, 0.95);
+  std::vector<point3> near;
+  for (int i = 0; i < 100; ++i) near.push_back({u(rng), u(rng), -1e-6});       // 1e-6 below the interface
+  for (int i = 0; i < 100; ++i) near.push_back({u(rng), u(rng), 0.5 - 1e-7});  // just under the top
+  for (int i = 0; i < 20; ++i) near.push_back({u(rng), u(rng), 0.0});          // exactly on the interface
+  conform_and_check(p, near, 0.0, "cloud near facet");
+}
+
+BOOST_AUTO_TEST_CASE(post_check_reports_encroachment) {
+  // a boundary that was never conformed: the square's side is encroached by a point near it
+  cf::boundary<2> b;
+  b.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0.1}};
+  b.faces = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  const auto bad = cf::encroached(b);
+  BOOST_TEST_REQUIRE(bad.size() == 1u);
+  BOOST_TEST(bad[0].first == 0u);
+  BOOST_TEST(bad[0].second == 4u);
+  // a point exactly on the diametral circle is a tie; the square's other corners do not make
+  // the edge non-Delaunay, so it is not encroached
+  b.points[4] = {0.5, 0.5};
+  BOOST_TEST(cf::encroached(b).empty());
+}
+
+BOOST_AUTO_TEST_CASE(steiner_cap_is_a_clear_error) {
+  const auto p = wedge_2d(1.0);
+  cf::options o;
+  o.size = 0.001;
+  o.max_steiner = 50;
+  BOOST_CHECK_EXCEPTION(cf::conform(p, {}, o), cf::conform_error,
+                        [](const auto& e) { return std::string(e.what()).find("more than 50 boundary points") != std::string::npos; });
+}
+
+BOOST_AUTO_TEST_CASE(invalid_plcs_are_rejected) {
+  auto open = stacked(0.5);
+  open.facets.pop_back();  // one side wall missing: not closed
+  cf::options o;
+  const auto b = cf::conform(open, {}, o);
+  BOOST_CHECK_EXCEPTION(cf::label(b, open), cf::conform_error,
+                        [](const auto& e) { return std::string(e.what()).find("not closed") != std::string::npos; });
+  auto outside = stacked(0.5);
+  outside.regions[1].at = {5, 5, 5};
+  const auto b2 = cf::conform(outside, {}, o);
+  BOOST_CHECK_EXCEPTION(cf::label(b2, outside), cf::conform_error,
+                        [](const auto& e) { return std::string(e.what()).find("outside the domain") != std::string::npos; });
+  auto nonplanar = stacked(0.5);
+  nonplanar.points[8][2] = 0.6;  // one corner of the top facet lifted
+  BOOST_CHECK_EXCEPTION(cf::conform(nonplanar, {}, o), cf::conform_error,
+                        [](const auto& e) { return std::string(e.what()).find("not in the facet's plane") != std::string::npos; });
+}

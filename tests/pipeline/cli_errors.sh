@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# Bad input: every case must exit non-zero, print an error naming the file (and line or entity),
+# and leave no output file behind.
+set -uo pipefail
+mesh=$1; src=$2
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+fail=0; n=0
+expect() {  # file expected-substring [extra args]
+  local in=$1 want=$2; shift 2
+  local out=$work/out.vtu; rm -f "$out"
+  local msg; msg=$(timeout 60 "$mesh" "$in" -o "$out" --quiet "$@" 2>&1); local rc=$?
+  n=$((n + 1))
+  if [ $rc -eq 0 ] || [ $rc -ge 124 ]; then echo "FAIL: $in: exit $rc"; fail=1
+  elif [[ "$msg" != *"$want"* ]]; then echo "FAIL: $in: message '$msg' lacks '$want'"; fail=1
+  elif [ -e "$out" ] || ls "$work"/.out.vtu* >/dev/null 2>&1; then echo "FAIL: $in: output left behind"; fail=1
+  else echo "ok: $(basename "$in"): $msg"; fi
+}
+cube() {  # writes a unit cube .poly with optional edits via sed
+  cat > "$1" <<'P'
+8 3 0 0
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+5 0 0 1
+6 1 0 1
+7 1 1 1
+8 0 1 1
+6 0
+1
+4 1 2 3 4
+1
+4 5 6 7 8
+1
+4 1 2 6 5
+1
+4 2 3 7 6
+1
+4 3 4 8 7
+1
+4 4 1 5 8
+0
+1
+1 0.5 0.5 0.5 1 -1
+P
+}
+cube "$work/ok.poly"
+"$mesh" "$work/ok.poly" --quiet -o "$work/ok.vtu" || { echo "FAIL: the valid cube does not mesh"; fail=1; }
+cube "$work/nan.poly"; sed -i 's/^3 1 1 0$/3 1 nan 0/' "$work/nan.poly"; expect "$work/nan.poly" "nan.poly:4: 'nan' is not a finite number"
+cube "$work/dup.poly"; sed -i 's/^8 0 1 1$/8 1 1 1/' "$work/dup.poly"; expect "$work/dup.poly" "duplicate point: point 8 repeats point 7"
+cube "$work/range.poly"; sed -i 's/^4 4 1 5 8$/4 4 1 5 9/' "$work/range.poly"; expect "$work/range.poly" "corner 9 out of range"
+cube "$work/open.poly"; python3 - "$work/open.poly" <<'PY'
+import sys; p=sys.argv[1]; l=open(p).read().split('\n'); i=l.index('4 4 1 5 8'); del l[i-1:i+1]; l[l.index('6 0')]='5 0'; open(p,'w').write('\n'.join(l))
+PY
+expect "$work/open.poly" "not closed"
+cube "$work/outside.poly"; sed -i 's/^1 0.5 0.5 0.5 1 -1$/1 5 5 5 1 -1/' "$work/outside.poly"; expect "$work/outside.poly" "outside the domain"
+cube "$work/trunc.poly"; head -12 "$work/ok.poly" > "$work/trunc.poly"; expect "$work/trunc.poly" "unexpected end of file"
+cube "$work/bend.poly"; sed -i 's/^8 0 1 1$/8 0 1 1.5/' "$work/bend.poly"; expect "$work/bend.poly" "not in the facet's plane"
+expect "$work/missing.poly" "cannot open file"
+expect "$work/ok.poly" "unknown option" --frobnicate
+expect "$work/ok.poly" "--size must be positive" --size -1
+printf '2 3 0 0\n1 0.5 0.5 0.5\n2 0.5 0.5 0.5\n' > "$work/cloud.node"; expect "$work/ok.poly" "duplicate point" --cloud "$work/cloud.node"
+[ $fail = 0 ] && echo "$n passed, 0 failed" || echo "some cases FAILED"
+exit $fail

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Meshes every ../shared/bench structure (2D and 3D, at its suggested size h) and the diffusion
+# structure with a 1e4-point cloud, with the library verifier on, and requires the independent
+# checker ../shared/tools/meshcheck to report PASS (valid, conforming, regions, Delaunay).
+# Exit 77 (ctest: skipped) when ../shared is absent, as in a user's clone.
+set -uo pipefail
+mesh=$1; src=$2
+shared=${GSSE_SHARED_DIR:-$src/../shared}
+if [ ! -f "$shared/bench/structures.py" ] || [ ! -x "$shared/tools/meshcheck/build.sh" ]; then
+  echo "SKIPPED: ../shared absent (bench structures and meshcheck)"; exit 77
+fi
+MC=$(MESHCHECK_BUILD=${MESHCHECK_BUILD:-/tmp/meshcheck-build-gsse} "$shared/tools/meshcheck/build.sh" 2>/dev/null | tail -1)
+[ -x "$MC" ] || { echo "FAIL: could not build meshcheck"; exit 1; }
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+fail=0; n=0
+run() {  # name dim extra-args...
+  local name=$1 dim=$2; shift 2
+  local dir=$work/$name$dim; mkdir -p "$dir"
+  python3 "$shared/bench/structures.py" "$name" --dim "$dim" --out "$dir" "$@" > /dev/null || { echo "FAIL: structures.py $name"; fail=1; return; }
+  local h; h=$(python3 -c "import json,sys;print(json.load(open('$dir/$name.json'))['h'])")
+  local cloud=(); [ -f "$dir/$name.cloud.node" ] && cloud=(--cloud "$dir/$name.cloud.node")
+  local t0=$(date +%s.%N)
+  if ! "$mesh" "$dir/$name.poly" --size "$h" "${cloud[@]}" --verify --quiet -o "$dir/out.node"; then
+    echo "FAIL: gsse-mesh $name ${dim}D"; fail=1; return
+  fi
+  local verdict; verdict=$("$MC" "$dir/$name.poly" "$dir/out" | tail -1)
+  n=$((n + 1))
+  printf '%-10s %dD h=%-6s %s  (%.1f s)\n' "$name" "$dim" "$h" "$verdict" "$(echo "$(date +%s.%N) - $t0" | bc)"
+  [[ "$verdict" == *PASS* ]] || fail=1
+}
+for s in mosfet diffusion trench finfet; do for d in 2 3; do run $s $d; done; done
+run diffusion 3 --cloud 10000
+[ $fail = 0 ] && echo "$n passed, 0 failed" || echo "meshcheck: some structures FAILED"
+exit $fail

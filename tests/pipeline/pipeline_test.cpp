@@ -1,0 +1,141 @@
+#define BOOST_TEST_MODULE pipeline
+#include <boost/test/unit_test.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "gsse/io/node_ele.hpp"
+#include "gsse/io/poly.hpp"
+#include "gsse/pipeline/pipeline.hpp"
+#include "gsse/topology/incidence.hpp"
+
+using namespace gsse;
+namespace pl = gsse::pipeline;
+
+namespace {
+
+std::string example(const char* name) { return std::string(GSSE_SOURCE_DIR) + "/examples/" + name + ".poly"; }
+
+/// Runs the stages one by one (as a research code composing them would) and verifies with the
+/// conformed boundary and labels: valid, conforming, labelled, Delaunay.
+template <std::size_t D>
+domain<D> mesh_and_verify(const plc<D>& p, double h, unsigned threads, std::vector<point<D>> cloud = {}) {
+  conformer::options co;
+  co.size = h;
+  std::size_t dropped = 0;
+  const auto volume = pl::size_points<D>{}(p, h, cloud, dropped, co);
+  const auto b = pl::conform<D>{}(p, volume, co);
+  BOOST_TEST(conformer::encroached(b).empty());
+  const auto l = conformer::label(b, p);
+  auto d = pl::mesh_segments<D>{}(b, l, threads);
+  const auto problems = pl::verify(d, &b, &l);
+  BOOST_TEST(problems.empty(), p.source << ": " << (problems.empty() ? "" : problems.front()));
+  BOOST_TEST(d.segments().size() == p.regions.size());
+  return d;
+}
+
+std::string slurp(const std::string& f) {
+  std::ifstream in(f, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(examples_mesh_and_verify) {
+  for (double h : {0.1, 0.05}) {
+    const auto p2 = io::read_triangle_poly(example("mosfet2d"));
+    const auto d2 = mesh_and_verify(p2, h, 1);
+    const auto p3 = io::read_tetgen_poly(example("mosfet"));
+    const auto d3 = mesh_and_verify(p3, h, 2);
+    // segment names and numbers come from the input
+    BOOST_TEST(d3.segments()[0].name() == "substrate");
+    BOOST_TEST(d3.segments()[6].number() == 7);
+    // neighbouring segments share their interface
+    BOOST_TEST(interface_facets(d3, 0, 1).size() > 0u);  // substrate / gate oxide
+  }
+  mesh_and_verify(io::read_tetgen_poly(example("stack")), 0.2, 2);
+}
+
+BOOST_AUTO_TEST_CASE(finer_size_gives_more_elements) {
+  const auto p = io::read_tetgen_poly(example("stack"));
+  auto count = [&](double h) {
+    std::size_t n = 0;
+    for (const auto& s : mesh_and_verify(p, h, 1).segments()) n += s.num_cells();
+    return n;
+  };
+  const auto coarse = count(0.2), fine = count(0.1);
+  BOOST_TEST(fine > 4 * coarse);  // about 8x in 3D
+}
+
+BOOST_AUTO_TEST_CASE(output_is_identical_for_1_and_2_threads) {
+  const auto p = io::read_tetgen_poly(example("mosfet"));
+  const auto dir = std::filesystem::temp_directory_path() / "gsse_determinism";
+  std::filesystem::create_directories(dir);
+  pl::options o;
+  o.size = 0.05;
+  std::string first;
+  for (unsigned t : {1u, 2u}) {
+    o.threads = t;
+    pl::report r;
+    const auto d = pl::mesh(p, {}, o, r);
+    const auto base = (dir / ("t" + std::to_string(t))).string();
+    io::write_node_ele(d, base);
+    const auto bytes = slurp(base + ".node") + slurp(base + ".ele") + slurp(base + ".face");
+    BOOST_TEST(bytes.size() > 1000u);
+    if (t == 1)
+      first = bytes;
+    else
+      BOOST_TEST((bytes == first));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(a_research_code_replaces_one_stage) {
+  // Replace the sizing stage by a hand-made interior point set; the other stages are reused.
+  const auto p = io::read_tetgen_poly(example("stack"));
+  std::vector<point3> mine;
+  for (int i = 1; i < 5; ++i)
+    for (int j = 1; j < 5; ++j) mine.push_back({0.2 * i + 0.01, 0.2 * j + 0.02, -0.5 + 0.03 * i});
+  conformer::options co;
+  const auto b = pl::conform<3>{}(p, mine, co);
+  const auto l = conformer::label(b, p);
+  const auto d = pl::mesh_segments<3>{}(b, l, 1);
+  BOOST_TEST(pl::verify(d, &b, &l).empty());
+  BOOST_TEST(d.points().size() >= p.points.size() + mine.size());  // every point of mine is a vertex
+}
+
+BOOST_AUTO_TEST_CASE(cloud_points_outside_are_dropped) {
+  const auto p = io::read_tetgen_poly(example("stack"));
+  conformer::options co;
+  std::size_t dropped = 0;
+  const std::vector<point3> cloud{{0.5, 0.5, -0.5}, {3, 3, 3}, {0.25, 0.75, 0.1}};
+  const auto v = pl::size_points<3>{}(p, 0, cloud, dropped, co);
+  BOOST_TEST(dropped == 1u);
+  BOOST_TEST(v.size() == 2u);
+}
+
+BOOST_AUTO_TEST_CASE(verifier_detects_a_broken_mesh) {
+  const auto p = io::read_triangle_poly(example("mosfet2d"));
+  conformer::options co;
+  const auto b = pl::conform<2>{}(p, {}, co);
+  const auto l = conformer::label(b, p);
+  auto d = pl::mesh_segments<2>{}(b, l, 1);
+  BOOST_TEST_REQUIRE(pl::verify(d, &b, &l).empty());
+  // flip one cell: inverted
+  auto broken = d;
+  auto& cells = broken.segments()[0].mutable_cells();
+  std::swap(cells[0][0], cells[0][1]);
+  BOOST_TEST(!pl::verify(broken, &b, &l).empty());
+  // drop one cell: the segment no longer covers its boundary
+  auto holed = d;
+  holed.segments()[0].mutable_cells().pop_back();
+  BOOST_TEST(!pl::verify(holed, &b, &l).empty());
+  const auto q = pl::measure(d);
+  std::size_t ncells = 0;
+  for (const auto& s : d.segments()) ncells += s.num_cells();
+  BOOST_TEST(q.elements == ncells);
+  BOOST_TEST(q.min_angle > 0.0);
+  BOOST_TEST(q.max_angle < 180.0);
+}
