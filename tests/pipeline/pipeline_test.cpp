@@ -63,7 +63,8 @@ BOOST_AUTO_TEST_CASE(finer_size_gives_more_elements) {
   const auto p = io::read_tetgen_poly(example("stack"));
   auto count = [&](double h) {
     std::size_t n = 0;
-    for (const auto& s : mesh_and_verify(p, h, 1).segments()) n += s.num_cells();
+    const auto d = mesh_and_verify(p, h, 1);
+    for (const auto& s : d.segments()) n += s.num_cells();
     return n;
   };
   const auto coarse = count(0.2), fine = count(0.1);
