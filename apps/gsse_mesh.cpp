@@ -14,23 +14,25 @@
 #include "gsse/io/poly.hpp"
 #include "gsse/io/vtu.hpp"
 #include "gsse/pipeline/pipeline.hpp"
+#include "gsse/rules/defaults.hpp"
 
 namespace {
 
 void usage(std::FILE* to) {
   std::fputs(
       "usage: gsse-mesh INPUT [-o OUTPUT] [--size H] [--cloud POINTS.node] [--threads N] [--verify]\n"
-      "                 [--quiet] [--stats FILE.json] [--max-steiner N]\n"
+      "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--rules FILE.rules]\n"
       "  INPUT    TetGen .poly/.smesh (3D) or Triangle .poly (2D)\n"
       "  -o       output mesh: .vtu, .msh, or .node (writes .node/.ele/.face beside it)\n"
       "  --size   target element size H (default: none, boundary conforming only)\n"
       "  --cloud  extra interior points (.node); points outside every segment are dropped\n"
-      "  --verify check the mesh (valid, conforming, labelled, Delaunay); non-zero exit if not\n",
+      "  --verify check the mesh (valid, conforming, labelled, Delaunay); non-zero exit if not\n"
+      "  --rules  rule set replacing the embedded conformer rules (see docs/rules.md); validated first\n",
       to);
 }
 
 struct args {
-  std::string input, output, cloud, stats;
+  std::string input, output, cloud, stats, rules;
   double size = 0;
   unsigned threads = 1;
   bool verify = false, quiet = false;
@@ -47,6 +49,17 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.threads = a.threads;
   o.verify = a.verify;
   o.conform.max_steiner = a.max_steiner;
+  gsse::rules::rule_set custom;
+  if (!a.rules.empty()) {
+    custom = gsse::rules::load_rules(a.rules);
+    gsse::rules::require_valid(custom);
+    if (custom.dimension != static_cast<int>(D))
+      throw std::runtime_error(a.rules + ": a " + std::to_string(custom.dimension) + "D rule set for a " +
+                               std::to_string(D) + "D input");
+    if (custom.split.rules.empty())
+      throw std::runtime_error(a.rules + ": no split rules (the mesher consults the conformer rules)");
+    o.conform.rules = &custom;
+  }
   if (tty) o.progress = [](const std::string& s) { std::fprintf(stderr, "\r\033[Kgsse-mesh: %s", s.c_str()); };
   gsse::pipeline::report r;
   auto d = gsse::pipeline::mesh(p, cloud, o, r);
@@ -124,6 +137,8 @@ int main(int argc, char** argv) {
         a.threads = static_cast<unsigned>(std::stoul(value()));
       } else if (s == "--stats") {
         a.stats = value();
+      } else if (s == "--rules") {
+        a.rules = value();
       } else if (s == "--max-steiner") {
         a.max_steiner = std::stoul(value());
       } else if (s == "--verify") {

@@ -11,7 +11,7 @@ structures=("${@:-mosfet diffusion trench finfet}")
 shared=${GSSE_SHARED_DIR:-$(dirname "$0")/../../shared}
 command -v tetgen >/dev/null || { apt-get update -q >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -q tetgen >/dev/null; }
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-declare -A SIZES=([mosfet]="0.02 0.011" [diffusion]="0.035 0.019" [trench]="0.03 0.016" [finfet]="0.017 0.0095")
+declare -A SIZES=([mosfet]="0.031 0.0172" [diffusion]="0.047 0.026" [trench]="0.0465 0.0256" [finfet]="0.0286 0.0158")
 quality() {  # base of a .node/.ele mesh -> "median_re max_re min_dihedral"
   python3 - "$1" <<'PY'
 import sys, math
@@ -48,7 +48,7 @@ PY
 }
 run() {  # label command... ; prints "seconds peak_MB"
   /usr/bin/time -f "%e %M" -o "$work/time" "$@" > "$work/log" 2>&1 || { echo "FAILED: $* (see below)"; tail -3 "$work/log"; return 1; }
-  awk '{printf "%.2f %.0f", $1, $2/1024}' "$work/time"
+  awk '{printf "%.2f %.0f\n", $1, $2/1024}' "$work/time"
 }
 echo "| structure | h | tool | threads | tetrahedra | wall s | peak MB | radius-edge median / max | min dihedral |"
 echo "|---|---|---|---|---|---|---|---|---|"

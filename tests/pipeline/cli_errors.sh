@@ -60,5 +60,7 @@ expect "$work/missing.poly" "cannot open file"
 expect "$work/ok.poly" "unknown option" --frobnicate
 expect "$work/ok.poly" "--size must be positive" --size -1
 printf '2 3 0 0\n1 0.5 0.5 0.5\n2 0.5 0.5 0.5\n' > "$work/cloud.node"; expect "$work/ok.poly" "duplicate point" --cloud "$work/cloud.node"
+printf 'dimension 3\nsplit x\n element subfacet\nend\n' > "$work/bad.rules"; expect "$work/ok.poly" "bad.rules:2: split rule 'x': missing 'relation'" --rules "$work/bad.rules"
+expect "$work/ok.poly" "a 2D rule set for a 3D input" --rules "$src/rules/conformer2d.rules"
 [ $fail = 0 ] && echo "$n passed, 0 failed" || echo "some cases FAILED"
 exit $fail
