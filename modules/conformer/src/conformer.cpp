@@ -204,14 +204,7 @@ class state {
       if (shared) sh.vertex = *shared;
       if (shared_edge) sh.edge = *shared_edge;
       if (auto c = rules::split_point(*r, std::span<const point3>(elem), enc, sh)) {
-        if (std::getenv("GSSE_CONFORM_DEBUG") && kind == element_kind::subfacet && rel == relation::free && c->action != rules::split_action::project) {
-          static int shown = 0;
-          if (shown++ < 4) {
-            auto u = rules::unit_coordinates(std::span<const point3>(elem), enc);
-            std::fprintf(stderr, "proj fail: el (%g %g %g) (%g %g %g) (%g %g %g) enc (%g %g %g) u %g %g %g cand %d\n", elem[0][0], elem[0][1], elem[0][2], elem[1][0], elem[1][1], elem[1][2], elem[2][0], elem[2][1], elem[2][2], enc[0], enc[1], enc[2], u[0], u[1], u[2], (int)rules::split_candidate(rules::split_action::project, std::span<const point3>(elem), enc, sh).has_value());
-          }
-        }
-        if (std::getenv("GSSE_CONFORM_TRACE")) ++trace_[std::string(rules::to_string(kind)) + "/" + std::string(rules::to_string(rel)) + "/" + std::string(rules::to_string(c->action))];
+        if (trace_on_) ++trace_[std::string(rules::to_string(kind)) + "/" + std::string(rules::to_string(rel)) + "/" + std::string(rules::to_string(c->action))];
         return c->action == rules::split_action::project ? exact_projection(c->at, elem, enc) : c->at;
       }
     }
@@ -270,10 +263,6 @@ class state {
           }
           split_segment(e, i, y);  // then re-check the first half, now at position i
           ++splits;
-          if (std::getenv("GSSE_CONFORM_DEBUG") && splits % 2000 == 0) {
-            const auto& q = out_.points[edges_[e].chain[i + 1]];
-            std::fprintf(stderr, "seg split %zu on edge %u (%u-%u) at %.17g %.17g %.17g by %u (home %d/%u)\n", splits, e, edges_[e].u, edges_[e].v, q[0], q[1], q[D - 1], y, (int)out_.homes[y].kind, out_.homes[y].id);
-          }
           again = true;
         }
     }
@@ -292,6 +281,8 @@ class state {
   std::map<std::pair<vertex_id, vertex_id>, std::uint32_t> edge_index_;
   std::map<vertex_id, std::vector<std::uint32_t>> vertex_edges_;
   std::vector<vertex_id> ties_;
+  // GSSE_CONFORM_TRACE=1: per round, the number of splits and which rule/action fired how often
+  bool trace_on_ = std::getenv("GSSE_CONFORM_TRACE") != nullptr;
   std::map<std::string, std::size_t> trace_;
 
  public:
@@ -668,7 +659,7 @@ class state3 : public state<3> {
       seed_facets();
     }
     std::vector<std::size_t> seen(facets_.size(), 0);
-    const bool trace = std::getenv("GSSE_CONFORM_TRACE") != nullptr;
+    const bool trace = trace_on_;
     for (;;) {
       ++out_.rounds;
       const std::size_t seg_splits = conform_segments();

@@ -19,11 +19,6 @@ namespace {
 template <std::size_t D>
 using cell_t = std::array<vertex_id, D + 1>;
 
-/// True if q lies in the closed cell c (on its boundary counts: a point on an inner face of the
-/// coarse mesh is inside the domain; one on the PLC becomes a boundary vertex in the conformer).
-template <std::size_t D>
-bool inside_cell(const std::vector<point<D>>& p, const cell_t<D>& c, const point<D>& q);
-
 /// Faces of region r oriented with r on their positive side.
 template <std::size_t D>
 std::vector<std::array<vertex_id, D>> region_boundary(const conformer::boundary<D>& b, const conformer::labelling& l,
@@ -57,6 +52,8 @@ std::vector<std::vector<cell_t<D>>> wrap_all(const conformer::boundary<D>& b, co
   return cells;
 }
 
+/// True if q lies in the closed cell c (on its boundary counts: a point on an inner face of the
+/// coarse mesh is inside the domain; one on the PLC becomes a boundary vertex in the conformer).
 template <std::size_t D>
 bool inside_cell(const std::vector<point<D>>& p, const cell_t<D>& c, const point<D>& q) {
   if constexpr (D == 2) {

@@ -83,6 +83,29 @@ struct volume_kernel {
   }
 };
 
+/// Ranking hint and seed box of an edge front (2D grids): the edge's midpoint, left unit normal,
+/// squared half length and length, in grid coordinates.
+struct edge_probe {
+  point2 cc, n;
+  double r2, l;
+  static edge_probe of(const point2& a, const point2& b) {
+    const double l = distance(a, b);
+    return {0.5 * (a + b), {-(b[1] - a[1]) / l, (b[0] - a[0]) / l}, 0.25 * l * l, l};
+  }
+  static double estimate(const edge_probe& pr, const std::array<double, 2>& q) {
+    const point2 d = q - pr.cc;
+    const double h = dot(d, pr.n);
+    return h > 0 ? (dot(d, d) - pr.r2) / (2 * h) : std::numeric_limits<double>::infinity();
+  }
+  static void seed(const edge_probe& pr, std::array<double, 2>& lo, std::array<double, 2>& hi) {
+    for (std::size_t k = 0; k < 2; ++k) {
+      const double m = pr.cc[k] + 0.4 * pr.l * pr.n[k];
+      lo[k] = m - 0.5 * pr.l;
+      hi[k] = m + 0.5 * pr.l;
+    }
+  }
+};
+
 /// Triangles in 2D.
 struct plane_kernel {
   static constexpr std::size_t dim = 2, grid_dim = 2;
@@ -107,27 +130,10 @@ struct plane_kernel {
     centre = a + c;
     return true;
   }
-  struct probe {
-    point2 cc, n;
-    double r2, l;
-  };
-  probe prepare(const face& f) const {
-    const point2 &a = p[f[0]], &b = p[f[1]];
-    const double l = distance(a, b);
-    return {0.5 * (a + b), {-(b[1] - a[1]) / l, (b[0] - a[0]) / l}, 0.25 * l * l, l};
-  }
-  static double estimate(const probe& pr, const coord& q) {
-    const point2 d = q - pr.cc;
-    const double h = dot(d, pr.n);
-    return h > 0 ? (dot(d, d) - pr.r2) / (2 * h) : std::numeric_limits<double>::infinity();
-  }
-  static void seed(const probe& pr, coord& lo, coord& hi) {
-    for (std::size_t k = 0; k < 2; ++k) {
-      const double m = pr.cc[k] + 0.4 * pr.l * pr.n[k];
-      lo[k] = m - 0.5 * pr.l;
-      hi[k] = m + 0.5 * pr.l;
-    }
-  }
+  using probe = edge_probe;
+  probe prepare(const face& f) const { return edge_probe::of(p[f[0]], p[f[1]]); }
+  static double estimate(const probe& pr, const coord& q) { return edge_probe::estimate(pr, q); }
+  static void seed(const probe& pr, coord& lo, coord& hi) { edge_probe::seed(pr, lo, hi); }
 };
 
 /// Triangles of a planar facet of a 3D PLC: 3D points, combinatorics in the projection that drops
@@ -157,29 +163,14 @@ struct facet_kernel {
     centre = geometry::project(a + c, axis);
     return true;
   }
-  // The ranking hint works in the projection; projected circles are ellipses, so the hint is
-  // rougher than in the other kernels, but it only orders candidates.
-  struct probe {
-    point2 cc, n;
-    double r2, l;
-  };
+  // The ranking hint works in the projection, where circles are ellipses: rougher than in the
+  // other kernels, but it only orders candidates.
+  using probe = edge_probe;
   probe prepare(const face& f) const {
-    const point2 a = geometry::project(p[f[0]], axis), b = geometry::project(p[f[1]], axis);
-    const double l = distance(a, b);
-    return {0.5 * (a + b), {-(b[1] - a[1]) / l, (b[0] - a[0]) / l}, 0.25 * l * l, l};
+    return edge_probe::of(geometry::project(p[f[0]], axis), geometry::project(p[f[1]], axis));
   }
-  static double estimate(const probe& pr, const coord& q) {
-    const point2 d = q - pr.cc;
-    const double h = dot(d, pr.n);
-    return h > 0 ? (dot(d, d) - pr.r2) / (2 * h) : std::numeric_limits<double>::infinity();
-  }
-  static void seed(const probe& pr, coord& lo, coord& hi) {
-    for (std::size_t k = 0; k < 2; ++k) {
-      const double m = pr.cc[k] + 0.4 * pr.l * pr.n[k];
-      lo[k] = m - 0.5 * pr.l;
-      hi[k] = m + 0.5 * pr.l;
-    }
-  }
+  static double estimate(const probe& pr, const coord& q) { return edge_probe::estimate(pr, q); }
+  static void seed(const probe& pr, coord& lo, coord& hi) { edge_probe::seed(pr, lo, hi); }
 };
 
 }  // namespace gsse::front
