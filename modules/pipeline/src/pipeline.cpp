@@ -116,23 +116,60 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
   };
   std::vector<point<D>> out;
   if (h > 0) {
-    // keep-off distance from boundary vertices, through a hash of boundary points
+    // keep-off distance from the boundary faces (not only their vertices: a lattice point close to
+    // a facet's interior would be projected onto it, leaving a very short edge), through a hash
+    // of the faces' bounding boxes; double distances only place points, they decide no topology
     const double keep = 0.5 * h;
-    std::map<std::array<long, D>, std::vector<vertex_id>> near;
+    std::map<std::array<long, D>, std::vector<std::uint32_t>> near;
     auto nkey = [&](const point<D>& q) {
       std::array<long, D> k;
       for (std::size_t a = 0; a < D; ++a) k[a] = static_cast<long>(std::floor((q[a] - lo[a]) / keep));
       return k;
     };
-    for (vertex_id v = 0; v < b.points.size(); ++v) near[nkey(b.points[v])].push_back(v);
+    for (std::uint32_t f = 0; f < b.faces.size(); ++f) {
+      point<D> flo = b.points[b.faces[f][0]], fhi = flo;
+      for (auto v : b.faces[f])
+        for (std::size_t a = 0; a < D; ++a) flo[a] = std::min(flo[a], b.points[v][a]), fhi[a] = std::max(fhi[a], b.points[v][a]);
+      auto ka = nkey(flo), kb = nkey(fhi), k = ka;
+      for (;;) {
+        near[k].push_back(f);
+        std::size_t a = 0;
+        while (a < D && ++k[a] > kb[a]) k[a] = ka[a], ++a;
+        if (a == D) break;
+      }
+    }
+    auto face_distance2 = [&](std::uint32_t f, const point<D>& q) {
+      const auto& F = b.faces[f];
+      if constexpr (D == 2) {
+        const point2 a = b.points[F[0]], e = b.points[F[1]] - a;
+        const double t = std::clamp(dot(q - a, e) / dot(e, e), 0.0, 1.0);
+        return squared_distance(a + t * e, q);
+      } else {
+        // closest point of the triangle: the plane's foot if inside, else the nearest edge point
+        const point3 a = b.points[F[0]], u = b.points[F[1]] - a, v = b.points[F[2]] - a, n = cross(u, v);
+        const double nn = dot(n, n);
+        const point3 foot = q - (dot(q - a, n) / nn) * n;
+        const double l1 = dot(cross(b.points[F[1]] - foot, b.points[F[2]] - foot), n);
+        const double l2 = dot(cross(b.points[F[2]] - foot, a - foot), n);
+        const double l3 = dot(cross(a - foot, b.points[F[1]] - foot), n);
+        if (l1 >= 0 && l2 >= 0 && l3 >= 0) return squared_distance(foot, q);
+        double best = 1e300;
+        for (int i = 0; i < 3; ++i) {
+          const point3 s = b.points[F[static_cast<std::size_t>(i)]], e = b.points[F[static_cast<std::size_t>((i + 1) % 3)]] - s;
+          const double t = std::clamp(dot(q - s, e) / dot(e, e), 0.0, 1.0);
+          best = std::min(best, squared_distance(s + t * e, q));
+        }
+        return best;
+      }
+    };
     auto clear_of_boundary = [&](const point<D>& q) {
       auto k0 = nkey(q);
       std::array<long, D> k = k0;
       for (std::size_t a = 0; a < D; ++a) k[a] = k0[a] - 1;
       for (;;) {
         if (auto it = near.find(k); it != near.end())
-          for (auto v : it->second)
-            if (squared_distance(b.points[v], q) < keep * keep) return false;
+          for (auto f : it->second)
+            if (face_distance2(f, q) < keep * keep) return false;
         std::size_t a = 0;
         while (a < D && ++k[a] > k0[a] + 1) k[a] = k0[a] - 1, ++a;
         if (a == D) break;
