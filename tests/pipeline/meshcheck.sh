@@ -25,7 +25,7 @@ run() {  # name dim extra-args...
   fi
   local verdict; verdict=$("$MC" "$dir/$name.poly" "$dir/out" | tail -1)
   n=$((n + 1))
-  printf '%-10s %dD h=%-6s %s  (%.1f s)\n' "$name" "$dim" "$h" "$verdict" "$(echo "$(date +%s.%N) - $t0" | bc)"
+  printf '%-10s %dD h=%-6s %s  (%s s)\n' "$name" "$dim" "$h" "$verdict" "$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN{printf "%.1f", b-a}')"
   [[ "$verdict" == *PASS* ]] || fail=1
 }
 for s in mosfet diffusion trench finfet; do for d in 2 3; do run $s $d; done; done
