@@ -140,3 +140,23 @@ BOOST_AUTO_TEST_CASE(verifier_detects_a_broken_mesh) {
   BOOST_TEST(q.min_angle > 0.0);
   BOOST_TEST(q.max_angle < 180.0);
 }
+
+BOOST_AUTO_TEST_CASE(closed_surface_becomes_one_named_segment) {
+  // An OFF cube has no region points: one segment, named after the file, number 1.
+  const auto path = (std::filesystem::temp_directory_path() / "unit_cube.off").string();
+  std::ofstream(path) << "OFF\n8 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                         "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n";
+  const auto any = io::read_plc(path);
+  const auto& p = std::get<plc<3>>(any);
+  conformer::options co;
+  co.size = 0.25;
+  std::size_t dropped = 0;
+  const auto volume = pl::size_points<3>{}(p, 0.25, {}, dropped, co);
+  const auto b = pl::conform<3>{}(p, volume, co);
+  const auto l = conformer::label(b, p);
+  const auto d = pl::mesh_segments<3>{}(b, l, 1);
+  BOOST_TEST(pl::verify(d, &b, &l).empty());
+  BOOST_TEST_REQUIRE(d.segments().size() == 1u);
+  BOOST_TEST(d.segments()[0].name() == "unit_cube");
+  BOOST_TEST(d.segments()[0].number() == 1);
+}

@@ -1,6 +1,7 @@
 #include "gsse/conformer/regions.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -302,6 +303,9 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p) {
     }
     out.side[s / 2][s % 2] = it->second;
   }
+  // a closed surface without region points (OFF, STL) is one segment named after its file
+  if (p.regions.empty() && out.regions.size() == 1 && !p.source.empty())
+    out.regions[0].name = std::filesystem::path(p.source).stem().string();
   return out;
 }
 
