@@ -50,7 +50,6 @@ plc<3> prism(const std::vector<point2>& section, double height, const std::strin
   for (const auto& q : section) p.points.push_back({q[0], q[1], 0});
   for (const auto& q : section) p.points.push_back({q[0], q[1], height});
   plc_facet bottom, top;
-  for (vertex_id i = 0; i < n; ++i) bottom.polygons.emplace_back(), top.polygons.emplace_back();
   bottom.polygons = {{}};
   top.polygons = {{}};
   for (vertex_id i = 0; i < n; ++i) {

@@ -354,7 +354,6 @@ class state3 : public state<3> {
       S.loops.push_back(std::move(loop));
     }
     // every corner must lie in the facet's plane
-    const auto& poly0 = F.polygons.front();
     std::size_t i0 = 0, i1 = 1, i2 = 2;
     bool found = false;
     for (const auto& poly : F.polygons) {
@@ -365,7 +364,6 @@ class state3 : public state<3> {
           found = true;
         }
     }
-    (void)poly0;
     if (!found) throw conform_error(where + ": all corners are collinear");
     for (std::size_t k = 0; k < 3; ++k) {
       S.constant[k] = true;
@@ -694,10 +692,7 @@ class state3 : public state<3> {
 
 boundary<2> conform(const plc<2>& p, const std::vector<point2>& volume, const options& o) {
   state<2> s(p, volume, o);
-  for (std::size_t i = 0; i < p.edges.size(); ++i) {
-    const auto e = s.edge_id(p.edges[i][0], p.edges[i][1], 0);
-    (void)e;
-  }
+  for (const auto& e : p.edges) s.edge_id(e[0], e[1], 0);
   s.presplit_edges();
   ++s.out().rounds;
   s.conform_segments();

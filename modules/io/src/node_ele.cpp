@@ -24,13 +24,6 @@ std::string strip_mesh_extension(const std::string& path) {
   return path;
 }
 
-vertex_id vertex_ref(text_reader& r, long base, std::size_t n, const char* what) {
-  const long v = r.integer(what);
-  if (v < base || v >= base + static_cast<long>(n))
-    r.fail(std::string(what) + " " + std::to_string(v) + " out of range [" + std::to_string(base) + ", " +
-           std::to_string(base + static_cast<long>(n) - 1) + "]");
-  return static_cast<vertex_id>(v - base);
-}
 
 // .face/.edge files are optional; when present they must refer to existing points.
 template <std::size_t D>
@@ -43,7 +36,7 @@ void check_facet_file(const std::string& file, long base, std::size_t npoints) {
   for (long i = 0; i < n; ++i) {
     r.require_line((D == 3 ? "face " : "edge ") + std::to_string(i + 1) + " of " + std::to_string(n));
     (void)r.integer(D == 3 ? "face number" : "edge number");
-    for (std::size_t k = 0; k < D; ++k) (void)vertex_ref(r, base, npoints, "corner");
+    for (std::size_t k = 0; k < D; ++k) (void)detail::vertex_ref(r, base, npoints, "corner");
   }
 }
 
@@ -88,7 +81,7 @@ domain<D> read_node_ele(const std::string& path) {
       r.require_line(std::string(cell_word) + " " + std::to_string(i + 1) + " of " + std::to_string(n));
       (void)r.integer("element number");
       std::array<vertex_id, D + 1> c;
-      for (auto& v : c) v = vertex_ref(r, ibase, np, "corner");
+      for (auto& v : c) v = detail::vertex_ref(r, ibase, np, "corner");
       auto s = c;
       std::sort(s.begin(), s.end());
       if (std::adjacent_find(s.begin(), s.end()) != s.end()) r.fail(std::string(cell_word) + " repeats a vertex");

@@ -41,13 +41,6 @@ long read_points(text_reader& r, const std::string& path, plc<D>& out, std::vect
   return detail::read_node_block<D>(nr, m, a2, m2, out.points, out.point_markers, lines);
 }
 
-vertex_id vertex_ref(text_reader& r, long base, std::size_t npoints, const char* what) {
-  const long v = r.integer(what);
-  if (v < base || v >= base + static_cast<long>(npoints))
-    r.fail(std::string(what) + " " + std::to_string(v) + " out of range [" + std::to_string(base) + ", " +
-           std::to_string(base + static_cast<long>(npoints) - 1) + "]");
-  return static_cast<vertex_id>(v - base);
-}
 
 template <std::size_t D>
 void read_holes_and_regions(text_reader& r, plc<D>& out, bool triangle) {
@@ -142,7 +135,7 @@ plc<3> read_tetgen_poly(const std::string& path) {
     if (smesh) {
       const long nc = r.integer_in("number of corners", 1, 1'000'000);
       std::vector<vertex_id> poly;
-      for (long c = 0; c < nc; ++c) poly.push_back(vertex_ref(r, base, out.points.size(), "corner"));
+      for (long c = 0; c < nc; ++c) poly.push_back(detail::vertex_ref(r, base, out.points.size(), "corner"));
       facet.marker = fmark ? static_cast<int>(r.optional_integer("facet marker", 0)) : 0;
       facet.polygons.push_back(std::move(poly));
     } else {
@@ -154,7 +147,7 @@ plc<3> read_tetgen_poly(const std::string& path) {
         r.require_line("polygon " + std::to_string(p + 1) + " of facet " + std::to_string(f + 1));
         const long nc = r.integer_in("number of corners", 1, 1'000'000);
         std::vector<vertex_id> poly;
-        for (long c = 0; c < nc; ++c) poly.push_back(vertex_ref(r, base, out.points.size(), "corner"));
+        for (long c = 0; c < nc; ++c) poly.push_back(detail::vertex_ref(r, base, out.points.size(), "corner"));
         facet.polygons.push_back(std::move(poly));
       }
       for (long h = 0; h < nh; ++h) {
@@ -184,8 +177,8 @@ plc<2> read_triangle_poly(const std::string& path) {
   for (long s = 0; s < ns; ++s) {
     r.require_line("segment " + std::to_string(s + 1));
     (void)r.integer("segment number");
-    const vertex_id a = vertex_ref(r, base, out.points.size(), "endpoint");
-    const vertex_id b = vertex_ref(r, base, out.points.size(), "endpoint");
+    const vertex_id a = detail::vertex_ref(r, base, out.points.size(), "endpoint");
+    const vertex_id b = detail::vertex_ref(r, base, out.points.size(), "endpoint");
     if (a == b) r.fail("segment " + std::to_string(s + 1) + " has equal endpoints");
     out.edges.push_back({a, b});
     out.edge_markers.push_back(smark ? static_cast<int>(r.optional_integer("segment marker", 0)) : 0);

@@ -70,6 +70,58 @@ bool inside_cell(const std::vector<point<D>>& p, const cell_t<D>& c, const point
   }
 }
 
+/// Hash of uniform cells holding ids of objects by their bounding boxes (coarse cells for point
+/// location, boundary faces for the keep-off distance of the lattice).
+template <std::size_t D>
+class box_buckets {
+ public:
+  box_buckets(const point<D>& origin, double cell) : o_(origin), cell_(cell) {}
+  std::array<long, D> key(const point<D>& q) const {
+    std::array<long, D> k;
+    for (std::size_t a = 0; a < D; ++a) k[a] = static_cast<long>(std::floor((q[a] - o_[a]) / cell_));
+    return k;
+  }
+  /// Files `id` under every cell met by the bounding box of `ids` (points of `p`).
+  template <class Ids>
+  void insert(std::uint32_t id, const std::vector<point<D>>& p, const Ids& ids) {
+    point<D> lo = p[ids[0]], hi = lo;
+    for (auto v : ids)
+      for (std::size_t a = 0; a < D; ++a) lo[a] = std::min(lo[a], p[v][a]), hi[a] = std::max(hi[a], p[v][a]);
+    for_cells(key(lo), key(hi), [&](const std::array<long, D>& k) {
+      cells_[k].push_back(id);
+      return true;
+    });
+  }
+  /// Calls f(id) for the ids in the cells within `ring` cells of q's cell; stops and returns false
+  /// as soon as f does.
+  template <class F>
+  bool visit(const point<D>& q, long ring, F&& f) const {
+    auto a = key(q), b = a;
+    for (std::size_t k = 0; k < D; ++k) a[k] -= ring, b[k] += ring;
+    return for_cells(a, b, [&](const std::array<long, D>& k) {
+      if (auto it = cells_.find(k); it != cells_.end())
+        for (auto id : it->second)
+          if (!f(id)) return false;
+      return true;
+    });
+  }
+
+ private:
+  template <class F>
+  static bool for_cells(const std::array<long, D>& a, const std::array<long, D>& b, F&& f) {
+    std::array<long, D> k = a;
+    for (;;) {
+      if (!f(k)) return false;
+      std::size_t i = 0;
+      while (i < D && ++k[i] > b[i]) k[i] = a[i], ++i;
+      if (i == D) return true;
+    }
+  }
+  point<D> o_;
+  double cell_;
+  std::map<std::array<long, D>, std::vector<std::uint32_t>> cells_;
+};
+
 }  // namespace
 
 template <std::size_t D>
@@ -89,30 +141,10 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
   // bucket coarse cells by bounding box
   const double ext = distance(lo, hi);
   const double cell = std::max(ext / std::pow(static_cast<double>(all.size() + 1), 1.0 / D), 1e-300);
-  std::map<std::array<long, D>, std::vector<std::uint32_t>> buckets;
-  auto key = [&](const point<D>& q) {
-    std::array<long, D> k;
-    for (std::size_t a = 0; a < D; ++a) k[a] = static_cast<long>(std::floor((q[a] - lo[a]) / cell));
-    return k;
-  };
-  for (std::uint32_t c = 0; c < all.size(); ++c) {
-    point<D> clo = b.points[all[c][0]], chi = clo;
-    for (auto v : all[c])
-      for (std::size_t a = 0; a < D; ++a) clo[a] = std::min(clo[a], b.points[v][a]), chi[a] = std::max(chi[a], b.points[v][a]);
-    auto ka = key(clo), kb = key(chi), k = ka;
-    for (;;) {
-      buckets[k].push_back(c);
-      std::size_t a = 0;
-      while (a < D && ++k[a] > kb[a]) k[a] = ka[a], ++a;
-      if (a == D) break;
-    }
-  }
+  box_buckets<D> buckets(lo, cell);
+  for (std::uint32_t c = 0; c < all.size(); ++c) buckets.insert(c, b.points, all[c]);
   auto in_segment = [&](const point<D>& q) {
-    auto it = buckets.find(key(q));
-    if (it == buckets.end()) return false;
-    for (auto c : it->second)
-      if (inside_cell(b.points, all[c], q)) return true;
-    return false;
+    return !buckets.visit(q, 0, [&](std::uint32_t c) { return !inside_cell(b.points, all[c], q); });
   };
   std::vector<point<D>> out;
   if (h > 0) {
@@ -120,24 +152,8 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
     // a facet's interior would be projected onto it, leaving a very short edge), through a hash
     // of the faces' bounding boxes; double distances only place points, they decide no topology
     const double keep = 0.5 * h;
-    std::map<std::array<long, D>, std::vector<std::uint32_t>> near;
-    auto nkey = [&](const point<D>& q) {
-      std::array<long, D> k;
-      for (std::size_t a = 0; a < D; ++a) k[a] = static_cast<long>(std::floor((q[a] - lo[a]) / keep));
-      return k;
-    };
-    for (std::uint32_t f = 0; f < b.faces.size(); ++f) {
-      point<D> flo = b.points[b.faces[f][0]], fhi = flo;
-      for (auto v : b.faces[f])
-        for (std::size_t a = 0; a < D; ++a) flo[a] = std::min(flo[a], b.points[v][a]), fhi[a] = std::max(fhi[a], b.points[v][a]);
-      auto ka = nkey(flo), kb = nkey(fhi), k = ka;
-      for (;;) {
-        near[k].push_back(f);
-        std::size_t a = 0;
-        while (a < D && ++k[a] > kb[a]) k[a] = ka[a], ++a;
-        if (a == D) break;
-      }
-    }
+    box_buckets<D> near(lo, keep);
+    for (std::uint32_t f = 0; f < b.faces.size(); ++f) near.insert(f, b.points, b.faces[f]);
     auto face_distance2 = [&](std::uint32_t f, const point<D>& q) {
       const auto& F = b.faces[f];
       if constexpr (D == 2) {
@@ -163,18 +179,7 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
       }
     };
     auto clear_of_boundary = [&](const point<D>& q) {
-      auto k0 = nkey(q);
-      std::array<long, D> k = k0;
-      for (std::size_t a = 0; a < D; ++a) k[a] = k0[a] - 1;
-      for (;;) {
-        if (auto it = near.find(k); it != near.end())
-          for (auto f : it->second)
-            if (face_distance2(f, q) < keep * keep) return false;
-        std::size_t a = 0;
-        while (a < D && ++k[a] > k0[a] + 1) k[a] = k0[a] - 1, ++a;
-        if (a == D) break;
-      }
-      return true;
+      return near.visit(q, 1, [&](std::uint32_t f) { return face_distance2(f, q) >= keep * keep; });
     };
     // lattice: BCC in 3D (nearest-neighbour distance h), triangular in 2D; the origin is shifted
     // by odd fractions so lattice points rarely sit exactly on axis-aligned input planes
