@@ -21,18 +21,22 @@ namespace {
 void usage(std::FILE* to) {
   std::fputs(
       "usage: gsse-mesh INPUT [-o OUTPUT] [--size H] [--cloud POINTS.node] [--threads N] [--verify]\n"
-      "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--rules FILE.rules]\n"
+      "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
+      "                 [--rules FILE.rules]\n"
       "  INPUT    TetGen .poly/.smesh (3D) or Triangle .poly (2D)\n"
       "  -o       output mesh: .vtu, .msh, or .node (writes .node/.ele/.face beside it)\n"
       "  --size   target element size H (default: none, boundary conforming only)\n"
       "  --cloud  extra interior points (.node); points outside every segment are dropped\n"
       "  --verify check the mesh (valid, conforming, labelled, Delaunay); non-zero exit if not\n"
-      "  --rules  rule set replacing the embedded conformer rules (see docs/rules.md); validated first\n",
+      "  --fill   interior points with --size: a lattice placed before meshing (default), or points\n"
+      "           created by the front rules while meshing\n"
+      "  --rules  rule set (see docs/rules.md), validated first: its split rules replace the conformer's,\n"
+      "           its front rules the mesher's (front rules imply --fill rules)\n",
       to);
 }
 
 struct args {
-  std::string input, output, cloud, stats, rules;
+  std::string input, output, cloud, stats, rules, fill;
   double size = 0;
   unsigned threads = 1;
   bool verify = false, quiet = false;
@@ -56,10 +60,17 @@ int run(const gsse::plc<D>& p, const args& a) {
     if (custom.dimension != static_cast<int>(D))
       throw std::runtime_error(a.rules + ": a " + std::to_string(custom.dimension) + "D rule set for a " +
                                std::to_string(D) + "D input");
-    if (custom.split.rules.empty())
-      throw std::runtime_error(a.rules + ": no split rules (the mesher consults the conformer rules)");
-    o.conform.rules = &custom;
+    if (custom.split.rules.empty() && custom.front.rules.empty())
+      throw std::runtime_error(a.rules + ": neither split rules nor front rules");
+    if (!custom.split.rules.empty()) o.conform.rules = &custom;
+    if (!custom.front.rules.empty()) {
+      o.front_rules = &custom.front;
+      if (a.fill.empty()) o.interior = gsse::pipeline::fill::rules;
+    }
   }
+  if (a.fill == "rules") o.interior = gsse::pipeline::fill::rules;
+  if (o.interior == gsse::pipeline::fill::rules && !(a.size > 0))
+    throw std::runtime_error("--fill rules needs --size (the rules work in units of the target size)");
   if (tty) o.progress = [](const std::string& s) { std::fprintf(stderr, "\r\033[Kgsse-mesh: %s", s.c_str()); };
   gsse::pipeline::report r;
   auto d = gsse::pipeline::mesh(p, cloud, o, r);
@@ -82,6 +93,12 @@ int run(const gsse::plc<D>& p, const args& a) {
   if (!a.quiet) {
     std::printf("%s: %zuD, %zu points (%zu volume, %zu dropped outside, %zu boundary Steiner), %zu segments\n",
                 p.source.c_str(), D, d.points().size(), r.volume_points, r.dropped_points, r.steiner, d.segments().size());
+    if (o.interior == gsse::pipeline::fill::rules) {
+      const auto& c = r.creation;
+      std::printf("  front rules: %zu points created for %zu faces with a far apex (declined: %zu no rule fits,\n"
+                  "               %zu outside, %zu encroaching, %zu in a circumsphere; %zu reused a point)\n",
+                  c.created, c.too_far, c.no_rule, c.outside, c.encroaching, c.in_circumball, c.not_needed);
+    }
     for (const auto& s : d.segments()) {
       const auto& c = s.cell_data();
       std::vector<gsse::vertex_id> used;
@@ -104,7 +121,7 @@ int run(const gsse::plc<D>& p, const args& a) {
     for (std::size_t k = 0; k < d.segments().size(); ++k)
       js << (k ? ", " : "") << "{\"name\": \"" << d.segments()[k].name() << "\", \"number\": " << d.segments()[k].number()
          << ", \"cells\": " << d.segments()[k].num_cells() << "}";
-    js << "], \"times\": {";
+    js << "], \"created_points\": " << r.creation.created << ", \"times\": {";
     for (std::size_t k = 0; k < r.times.size(); ++k)
       js << (k ? ", " : "") << "\"" << r.times[k].stage << "\": " << r.times[k].seconds;
     js << "}, \"verified\": " << (a.verify ? (problems.empty() ? "true" : "false") : "null") << "}\n";
@@ -137,6 +154,10 @@ int main(int argc, char** argv) {
         a.threads = static_cast<unsigned>(std::stoul(value()));
       } else if (s == "--stats") {
         a.stats = value();
+      } else if (s == "--fill") {
+        a.fill = value();
+        if (a.fill != "lattice" && a.fill != "rules")
+          throw std::invalid_argument("--fill must be 'lattice' or 'rules', not '" + a.fill + "'");
       } else if (s == "--rules") {
         a.rules = value();
       } else if (s == "--max-steiner") {

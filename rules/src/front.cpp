@@ -159,6 +159,12 @@ double orientation(int dimension, std::span<const point3> p) {
 bool in_convex_piece(int dimension, std::span<const point3> piece, const point3& u, double margin) {
   // The hull is the intersection of all supporting lines (planes) through 2 (3) of its points.
   const std::size_t n = piece.size();
+  // outside the bounding box (by more than -margin): outside the hull; the cheap test first
+  for (int a = 0; a < (dimension == 2 ? 2 : 3); ++a) {
+    double lo = piece[0][a], hi = piece[0][a];
+    for (const auto& q : piece) lo = std::min(lo, q[a]), hi = std::max(hi, q[a]);
+    if (u[a] < lo + margin - eps || u[a] > hi - margin + eps) return false;
+  }
   bool any = false;
   auto test = [&](const point3& o, const point3& normal) {  // normal has unit length
     bool pos = false, neg = false;

@@ -14,13 +14,7 @@ auto run(const K& k, const point_grid<K::grid_dim>& grid, const std::vector<Face
          wrap_stats* stats, std::size_t max_cells) {
   gift_wrapper<K> w(k, grid);
   auto cells = w.run(boundary, label, max_cells);
-  if (stats) {
-    stats->cells += w.stats().cells;
-    stats->candidate_tests += w.stats().candidate_tests;
-    stats->side_tests += w.stats().side_tests;
-    stats->visits += w.stats().visits;
-    stats->max_front = std::max(stats->max_front, w.stats().max_front);
-  }
+  if (stats) *stats += w.stats();
   return cells;
 }
 

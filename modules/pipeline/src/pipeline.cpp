@@ -10,6 +10,7 @@
 #include "gsse/front/front_mesher.hpp"
 #include "gsse/front/gift_wrap.hpp"
 #include "gsse/geometry/predicates.hpp"
+#include "gsse/rules/defaults.hpp"
 #include "gsse/topology/incidence.hpp"
 #include "gsse/traversal/for_each.hpp"
 
@@ -34,22 +35,55 @@ std::vector<std::array<vertex_id, D>> region_boundary(const conformer::boundary<
   return out;
 }
 
+inline std::string region_label(const conformer::labelling& l, std::size_t r) {
+  return "segment " + std::to_string(l.regions[r].number) + " '" + l.regions[r].name + "'";
+}
+
+/// Cells of every region, meshed in parallel with the points `pts` (b.points, possibly extended).
 template <std::size_t D>
-std::vector<std::vector<cell_t<D>>> wrap_all(const conformer::boundary<D>& b, const conformer::labelling& l,
-                                             unsigned threads) {
-  const auto grid = front::make_grid(std::span<const point<D>>(b.points));
+std::vector<std::vector<cell_t<D>>> wrap_all(const std::vector<point<D>>& pts, const conformer::boundary<D>& b,
+                                             const conformer::labelling& l, unsigned threads) {
+  const auto grid = front::make_grid(std::span<const point<D>>(pts));
   std::vector<std::vector<cell_t<D>>> cells(l.regions.size());
   std::vector<std::size_t> ids(l.regions.size());
   std::iota(ids.begin(), ids.end(), 0);
   std::vector<std::vector<std::array<vertex_id, D>>> bnd(l.regions.size());
   for (std::size_t r = 0; r < l.regions.size(); ++r) bnd[r] = region_boundary(b, l, static_cast<int>(r));
   auto work = [&](std::size_t r) {
-    cells[r] = front::wrap(std::span<const point<D>>(b.points), grid, bnd[r],
-                           "segment " + std::to_string(l.regions[r].number) + " '" + l.regions[r].name + "'");
+    cells[r] = front::wrap(std::span<const point<D>>(pts), grid, bnd[r], region_label(l, r));
   };
   // cost estimate: boundary size (volume work is unknown before meshing)
   for_each(execution::par(threads), ids, work, [&](std::size_t r) { return static_cast<double>(bnd[r].size()); });
   return cells;
+}
+
+/// Regions meshed with rule-driven point creation, each on its own copy of the points; the
+/// created points are appended to `pts` (a copy of b.points) region by region, then every region
+/// is meshed again with all of them.
+template <std::size_t D>
+std::vector<std::vector<cell_t<D>>> wrap_all_creating(std::vector<point<D>>& pts, const conformer::boundary<D>& b,
+                                                      const conformer::labelling& l, unsigned threads,
+                                                      const front::creation_options& co, front::creation_stats& cs) {
+  pts = b.points;
+  const auto grid = front::make_grid(std::span<const point<D>>(b.points));
+  const front::boundary_faces<D> faces(std::span<const point<D>>(b.points), std::span<const std::array<vertex_id, D>>(b.faces));
+  std::vector<std::vector<point<D>>> created(l.regions.size());
+  std::vector<front::creation_stats> st(l.regions.size());
+  std::vector<std::size_t> ids(l.regions.size());
+  std::iota(ids.begin(), ids.end(), 0);
+  std::vector<std::vector<std::array<vertex_id, D>>> bnd(l.regions.size());
+  for (std::size_t r = 0; r < l.regions.size(); ++r) bnd[r] = region_boundary(b, l, static_cast<int>(r));
+  auto work = [&](std::size_t r) {
+    std::vector<point<D>> own = b.points;
+    front::wrap_creating(own, grid, faces, bnd[r], region_label(l, r), co, &st[r]);
+    created[r].assign(own.begin() + static_cast<std::ptrdiff_t>(b.points.size()), own.end());
+  };
+  for_each(execution::par(threads), ids, work, [&](std::size_t r) { return static_cast<double>(bnd[r].size()); });
+  for (std::size_t r = 0; r < l.regions.size(); ++r) {
+    cs += st[r];
+    pts.insert(pts.end(), created[r].begin(), created[r].end());
+  }
+  return wrap_all(pts, b, l, threads);
 }
 
 /// True if q lies in the closed cell c (on its boundary counts: a point on an inner face of the
@@ -126,13 +160,14 @@ class box_buckets {
 
 template <std::size_t D>
 std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, const std::vector<point<D>>& cloud,
-                                                 std::size_t& dropped, const conformer::options& co) const {
+                                                 std::size_t& dropped, const conformer::options& co,
+                                                 bool lattice) const {
   dropped = 0;
-  if (h <= 0 && cloud.empty()) return {};
+  if ((h <= 0 || !lattice) && cloud.empty()) return {};
   // A coarse mesh of the boundary alone locates candidate points exactly (point-in-simplex).
   auto b = conformer::conform(p, {}, co);
   const auto l = conformer::label(b, p);
-  const auto coarse = wrap_all(b, l, 1);
+  const auto coarse = wrap_all(b.points, b, l, 1);
   std::vector<cell_t<D>> all;
   for (const auto& cs : coarse) all.insert(all.end(), cs.begin(), cs.end());
   point<D> lo = b.points[0], hi = b.points[0];
@@ -147,7 +182,7 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
     return !buckets.visit(q, 0, [&](std::uint32_t c) { return !inside_cell(b.points, all[c], q); });
   };
   std::vector<point<D>> out;
-  if (h > 0) {
+  if (h > 0 && lattice) {
     // keep-off distance from the boundary faces (not only their vertices: a lattice point close to
     // a facet's interior would be projected onto it, leaving a very short edge), through a hash
     // of the faces' bounding boxes; double distances only place points, they decide no topology
@@ -221,18 +256,22 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
 template <std::size_t D>
 domain<D> mesh_segments<D>::operator()(const conformer::boundary<D>& b, const conformer::labelling& l,
                                        unsigned threads) const {
-  const auto cells = wrap_all(b, l, threads);
+  std::vector<point<D>> extended;
+  front::creation_stats st;
+  const auto cells = create ? wrap_all_creating(extended, b, l, threads, *create, st) : wrap_all(b.points, b, l, threads);
+  if (create && created) *created = st;
+  const auto& pts = create ? extended : b.points;
   // compact the points actually used, keeping their order
-  std::vector<vertex_id> remap(b.points.size(), no_vertex);
+  std::vector<vertex_id> remap(pts.size(), no_vertex);
   for (const auto& cs : cells)
     for (const auto& c : cs)
       for (auto v : c) remap[v] = 0;
   domain<D> d;
   vertex_id next = 0;
-  for (vertex_id v = 0; v < b.points.size(); ++v)
+  for (vertex_id v = 0; v < pts.size(); ++v)
     if (remap[v] == 0) {
       remap[v] = next++;
-      d.add_point(b.points[v]);
+      d.add_point(pts[v]);
     }
   std::vector<std::size_t> order(l.regions.size());
   std::iota(order.begin(), order.end(), 0);
@@ -379,7 +418,8 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   };
   conformer::options co = o.conform;
   co.size = o.size;
-  const auto volume = size_points<D>{}(p, o.size, cloud, r.dropped_points, co);
+  const bool creating = o.interior == fill::rules && o.size > 0;
+  const auto volume = size_points<D>{}(p, o.size, cloud, r.dropped_points, co, !creating);
   r.volume_points = volume.size();
   lap("sizing");
   const auto b = conform<D>{}(p, volume, co);
@@ -387,7 +427,15 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   lap("conform");
   const auto l = conformer::label(b, p);
   lap("label");
-  auto d = mesh_segments<D>{}(b, l, o.threads);
+  rules::rule_set defaults;
+  front::creation_options fo;
+  if (creating) {
+    if (!o.front_rules) defaults = rules::default_rules(D == 3 ? "front3d" : "front2d");
+    fo.rules = o.front_rules ? o.front_rules : &defaults.front;
+    fo.h = o.size;
+    fo.too_far = o.too_far;
+  }
+  auto d = mesh_segments<D>{creating ? &fo : nullptr, &r.creation}(b, l, o.threads);
   lap("mesh");
   if (o.verify) {
     r.problems = verify(d, &b, &l);

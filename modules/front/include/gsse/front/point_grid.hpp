@@ -98,19 +98,25 @@ class point_grid {
   /// Returns false (and stops) if f returns false.
   template <class F>
   bool visit_box(const coord& lo, const coord& hi, F&& f) const {
+    return visit_cells(lo, hi, [&](std::size_t cell) { return visit_cell(cell, f); });
+  }
+  /// Calls g(linear cell index) for every grid cell overlapping [lo, hi]; stops if g returns false.
+  template <class F>
+  bool visit_cells(const coord& lo, const coord& hi, F&& g) const {
     const auto a = cell_index(lo), b = cell_index(hi);
     if constexpr (G == 2) {
       for (long y = a[1]; y <= b[1]; ++y)
         for (long x = a[0]; x <= b[0]; ++x)
-          if (!visit_cell(linear({x, y}), f)) return false;
+          if (!g(linear({x, y}))) return false;
     } else {
       for (long z = a[2]; z <= b[2]; ++z)
         for (long y = a[1]; y <= b[1]; ++y)
           for (long x = a[0]; x <= b[0]; ++x)
-            if (!visit_cell(linear({x, y, z}), f)) return false;
+            if (!g(linear({x, y, z}))) return false;
     }
     return true;
   }
+  std::size_t cell_count() const { return start_.size() - 1; }
   template <class F>
   bool visit_cell(std::size_t cell, F& f) const {
     for (auto k = start_[cell]; k < start_[cell + 1]; ++k)

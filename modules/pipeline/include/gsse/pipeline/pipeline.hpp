@@ -13,11 +13,19 @@
 #include "gsse/conformer/regions.hpp"
 #include "gsse/container/domain.hpp"
 #include "gsse/container/plc.hpp"
+#include "gsse/front/point_creation.hpp"
 
 namespace gsse::pipeline {
 
+/// How interior points are placed when a size is given: a lattice before meshing (sizing stage),
+/// or by the front rules while meshing (point creation, see front/point_creation.hpp).
+enum class fill { lattice, rules };
+
 struct options {
   double size = 0;       // target element size H; 0: no sizing (boundary conforming only)
+  fill interior = fill::lattice;
+  const rules::front_rule_set* front_rules = nullptr;  // fill::rules; nullptr: the embedded default
+  double too_far = 0.8;  // fill::rules: create points for faces whose apex ball exceeds too_far*H
   unsigned threads = 1;  // threads for the per-segment meshing
   bool verify = false;   // run the verifier (with the conformed boundary and labels) at the end
   conformer::options conform{};
@@ -32,16 +40,17 @@ struct stage_time {
 struct report {
   std::vector<stage_time> times;
   std::size_t volume_points = 0, dropped_points = 0, steiner = 0;
+  front::creation_stats creation{};  // fill::rules
   std::vector<std::string> problems;  // from the verifier, when options::verify
 };
 
-/// Stage: interior points about H apart (BCC lattice in 3D, triangular in 2D), clipped to the
-/// segments (not holes) and kept at least H/2 from boundary vertices, plus the user's cloud points
-/// that lie inside a segment (the others are counted in `dropped`).
+/// Stage: interior points about H apart (BCC lattice in 3D, triangular in 2D; only if `lattice`),
+/// clipped to the segments (not holes) and kept at least H/2 from boundary faces, plus the user's
+/// cloud points that lie inside a segment (the others are counted in `dropped`).
 template <std::size_t D>
 struct size_points {
   std::vector<point<D>> operator()(const plc<D>& p, double h, const std::vector<point<D>>& cloud, std::size_t& dropped,
-                                   const conformer::options& co) const;
+                                   const conformer::options& co, bool lattice = true) const;
 };
 
 /// Stage: conform the boundary with respect to the volume points.
@@ -54,9 +63,14 @@ struct conform {
 };
 
 /// Stage: fill every segment by the front mesher, segments in parallel; merged deterministically
-/// (segments in number order, cells in front order), unused points dropped.
+/// (segments in number order, cells in front order), unused points dropped. With `create`, the
+/// front rules add interior points while meshing; since one segment's new points may lie in the
+/// circumspheres of another's cells, the segments are then meshed again with all points (no
+/// creation), which makes the union exactly Delaunay.
 template <std::size_t D>
 struct mesh_segments {
+  const front::creation_options* create = nullptr;
+  front::creation_stats* created = nullptr;  // filled when create is set
   domain<D> operator()(const conformer::boundary<D>& b, const conformer::labelling& l, unsigned threads) const;
 };
 
