@@ -62,8 +62,43 @@ std::vector<outer_facet<D>> outer_facets(const domain<D>& d, const std::string& 
       f[j] = c[static_cast<std::size_t>(reference_simplex<D>::facet_vertices[static_cast<std::size_t>(i)][j])];
     return f;
   };
-  std::unordered_map<std::array<vertex_id, D>, use, key_hash> map;
   const auto& segs = d.segments();
+  if (std::all_of(segs.begin(), segs.end(), [](const auto& s) { return s.finalized(); })) {
+    // fast path: a finalized segment knows its boundary facets (those without a neighbour); only
+    // they are matched across segments. Same facets, same order as the general path below.
+    struct sides {
+      std::size_t a, b;  // segments holding the facet (a == b: on the domain boundary)
+      int count;
+    };
+    std::unordered_map<std::array<vertex_id, D>, sides, key_hash> map;
+    auto each_boundary_facet = [&](auto&& f) {
+      for (std::size_t k = 0; k < segs.size(); ++k) {
+        const auto cells = segs[k].cell_data();
+        for (std::size_t c = 0; c < cells.size(); ++c)
+          for (int i = 0; i <= static_cast<int>(D); ++i)
+            if (segs[k].neighbour(static_cast<cell_id>(c), i) == no_cell) f(k, facet_of(cells[c], i));
+      }
+    };
+    auto sorted = [](auto f) {
+      std::sort(f.begin(), f.end());
+      return f;
+    };
+    each_boundary_facet([&](std::size_t k, const auto& f) {
+      auto [it, fresh] = map.try_emplace(sorted(f), sides{k, k, 0});
+      if (++it->second.count > 2) throw io_error::whole(file, "a facet is shared by more than two cells");
+      if (!fresh) it->second.b = k;
+    });
+    std::vector<outer_facet<D>> r;
+    each_boundary_facet([&](std::size_t k, const auto& f) {
+      const auto& u = map.at(sorted(f));
+      if (u.count == 1) return r.push_back({f, k, -1});
+      const std::size_t other = k == u.a ? u.b : u.a;
+      const auto na = segs[k].number(), nb = segs[other].number();
+      if (na < nb || (na == nb && k < other)) r.push_back({f, k, static_cast<long>(other)});
+    });
+    return r;
+  }
+  std::unordered_map<std::array<vertex_id, D>, use, key_hash> map;
   for (std::size_t k = 0; k < segs.size(); ++k) {
     const auto cells = segs[k].cell_data();
     for (std::size_t c = 0; c < cells.size(); ++c)

@@ -165,7 +165,11 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
   dropped = 0;
   if ((h <= 0 || !lattice) && cloud.empty()) return {};
   // A coarse mesh of the boundary alone locates candidate points exactly (point-in-simplex).
-  auto b = conformer::conform(p, {}, co);
+  // the unsized boundary (PLC facets, conformed, no size splits) bounds the same surface as the
+  // sized one at a fraction of the cost: it serves the point location and the keep-off distance
+  conformer::options unsized = co;
+  unsized.size = 0;
+  auto b = conformer::conform(p, {}, unsized);
   const auto l = conformer::label(b, p);
   const auto coarse = wrap_all(b.points, b, l, 1);
   std::vector<cell_t<D>> all;
