@@ -11,6 +11,7 @@
 #include "gsse/front/gift_wrap.hpp"
 #include "gsse/rules/defaults.hpp"
 #include "gsse/rules/split_rule.hpp"
+#include "gsse/traversal/for_each.hpp"
 #include "spatial_hash.hpp"
 
 namespace gsse::conformer {
@@ -299,6 +300,7 @@ struct facet_state {
   std::size_t boundary_size = 0;                                   // chain vertices when triangulated
   std::array<bool, 3> constant{};                                  // coordinate shared by all corners
   std::array<double, 3> constant_value{};
+  bool checked = false;  // triangles checked clean since they were made (see encroachers())
 };
 
 class state3 : public state<3> {
@@ -395,6 +397,7 @@ class state3 : public state<3> {
   void triangulate(std::uint32_t f) {
     auto& S = facets_[f];
     S.triangles.clear();
+    S.checked = false;
     S.boundary_size = boundary_size(f);
     const auto vs = facet_vertices(f);
     const auto grid = front::make_grid(out_.points, S.axis, vs);
@@ -417,7 +420,10 @@ class state3 : public state<3> {
     }
   }
 
-  vertex_id facet_encroacher(vertex_id a, vertex_id b, vertex_id c) {
+  /// The encroacher of subfacet abc (smallest id strictly inside its closed equatorial ball, or a
+  /// tie that keeps it out of the cospherical Delaunay set), or no_vertex. Read-only: facets are
+  /// checked in parallel, each thread with its own `ties` scratch.
+  vertex_id facet_encroacher(vertex_id a, vertex_id b, vertex_id c, std::vector<vertex_id>& ties) const {
     const auto& p = out_.points;
     // equatorial ball: circumcircle centre and radius
     const point3 u = p[b] - p[a], v = p[c] - p[a], n = cross(u, v);
@@ -427,17 +433,17 @@ class state3 : public state<3> {
     point3 lo, hi;
     for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
     vertex_id strict = no_vertex;
-    ties_.clear();
+    ties.clear();
     grid_.visit(lo, hi, [&](vertex_id y) {
       if (y == a || y == b || y == c || (strict != no_vertex && y > strict)) return;
       const int s = geometry::in_equatorial(p[a], p[b], p[c], p[y]);
       if (s > 0) strict = y;
-      else if (s == 0) ties_.push_back(y);
+      else if (s == 0) ties.push_back(y);
     });
     if (strict != no_vertex) return strict;
-    if (ties_.empty()) return no_vertex;
-    std::sort(ties_.begin(), ties_.end());
-    return detail::triangle_in_cospherical_dt(p, a, b, c, ties_) ? no_vertex : ties_.front();
+    if (ties.empty()) return no_vertex;
+    std::sort(ties.begin(), ties.end());
+    return detail::triangle_in_cospherical_dt(p, a, b, c, ties) ? no_vertex : ties.front();
   }
 
   /// Relation of vertex y (by its home) to facet f, with the shared vertex or edge.
@@ -526,8 +532,49 @@ class state3 : public state<3> {
   }
 
   /// Phase C: split encroached (or, with a size, too large) subfacets. Returns the number of splits.
+  /// Encroacher of every subfacet at the start of a round (no_vertex: clean), computed in parallel
+  /// over facets. A facet not triangulated again since its last check was clean then (any split
+  /// changes its vertex set), so only the points inserted since can encroach it: its subfacets are
+  /// checked fully only if one of those lies in their closed ball.
+  std::vector<std::vector<vertex_id>> encroachers() {
+    const auto& p = out_.points;
+    detail::spatial_hash<3> recent(p[0], grid_h_);
+    for (vertex_id v = static_cast<vertex_id>(checked_upto_); v < p.size(); ++v) recent.insert(v, p[v]);
+    std::vector<std::vector<vertex_id>> enc(facets_.size());
+    std::vector<std::uint32_t> ids(facets_.size());
+    for (std::uint32_t f = 0; f < ids.size(); ++f) ids[f] = f;
+    auto work = [&](std::uint32_t f) {
+      const auto& S = facets_[f];
+      std::vector<vertex_id> ties;
+      enc[f].assign(S.triangles.size(), no_vertex);
+      for (std::size_t t = 0; t < S.triangles.size(); ++t) {
+        const auto& T = S.triangles[t];
+        if (S.checked) {
+          const point3 u = p[T[1]] - p[T[0]], v = p[T[2]] - p[T[0]], n = cross(u, v);
+          const point3 cc = p[T[0]] + (1.0 / (2 * dot(n, n))) * cross(dot(u, u) * v - dot(v, v) * u, n);
+          const double r = distance(cc, p[T[0]]) * (1 + 1e-6) + 1e-300;
+          point3 lo, hi;
+          for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
+          bool touched = false;
+          recent.visit(lo, hi, [&](vertex_id w) {
+            touched = touched || (squared_distance(cc, p[w]) <= r * r &&
+                                  geometry::in_equatorial(p[T[0]], p[T[1]], p[T[2]], p[w]) >= 0);
+          });
+          if (!touched) continue;
+        }
+        enc[f][t] = facet_encroacher(T[0], T[1], T[2], ties);
+      }
+    };
+    for_each(execution::par(opt_.threads), ids, work,
+             [&](std::uint32_t f) { return static_cast<double>(facets_[f].triangles.size()); });
+    for (auto& S : facets_) S.checked = true;
+    checked_upto_ = p.size();
+    return enc;
+  }
+
   std::size_t conform_facets() {
     std::size_t splits = 0;
+    const auto enc = encroachers();
     const auto& p = out_.points;
     // points inserted in this phase, anywhere: a triangle whose circumball holds one is stale
     // until its facet is triangulated again next round
@@ -540,7 +587,8 @@ class state3 : public state<3> {
     for (std::uint32_t f = 0; f < facets_.size(); ++f) {
       auto& S = facets_[f];
       const auto tris = S.triangles;
-      for (const auto& T : tris) {
+      for (std::size_t t = 0; t < tris.size(); ++t) {
+        const auto& T = tris[t];
         bool stale = false;
         if (any_fresh) {
           const point3 u = p[T[1]] - p[T[0]], v = p[T[2]] - p[T[0]], n = cross(u, v);
@@ -553,7 +601,9 @@ class state3 : public state<3> {
           });
         }
         if (stale) continue;
-        const vertex_id y = facet_encroacher(T[0], T[1], T[2]);
+        // not stale: no point inserted in this phase lies in its ball, so the encroacher found at
+        // the start of the round stands
+        const vertex_id y = enc[f][t];
         const bool too_big = opt_.size > 0 && std::max({distance(p[T[0]], p[T[1]]), distance(p[T[1]], p[T[2]]),
                                                           distance(p[T[2]], p[T[0]])}) > opt_.size;
         if (y == no_vertex && !too_big) continue;
@@ -686,6 +736,7 @@ class state3 : public state<3> {
 
  private:
   std::vector<facet_state> facets_;
+  std::size_t checked_upto_ = 0;  // points that existed at the last check of every facet
 };
 
 }  // namespace

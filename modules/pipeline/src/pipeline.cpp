@@ -422,6 +422,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   };
   conformer::options co = o.conform;
   co.size = o.size;
+  co.threads = o.threads;
   const bool creating = o.interior == fill::rules && o.size > 0;
   const auto volume = size_points<D>{}(p, o.size, cloud, r.dropped_points, co, !creating);
   r.volume_points = volume.size();

@@ -24,6 +24,7 @@ struct options {
   double size = 0;                   // > 0: also split boundary elements longer than this
   std::size_t max_steiner = 2'000'000;  // cap on inserted boundary points: a runaway becomes an error
   const rules::rule_set* rules = nullptr;  // nullptr: the embedded default conformer rules
+  unsigned threads = 1;                    // subfacet encroachment checks run in parallel
 };
 
 /// Where a vertex lies: on a PLC vertex, on a PLC edge, inside a facet (3D), or free (volume).
