@@ -160,6 +160,43 @@ BOOST_AUTO_TEST_CASE(lattice_in_cube_is_valid) {
   BOOST_TEST((canonical(cells) == cgal_delaunay_3(p)));
 }
 
+BOOST_AUTO_TEST_CASE(wall_split_gives_the_same_cells) {
+  // DeWall: the cells across a plane, then each side meshed on its own from the faces left open,
+  // are the cells of the whole region (and so CGAL's), in 3D and 2D
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<point3> p;
+  for (int i = 0; i < 8; ++i) p.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+  for (int i = 0; i < 5000; ++i) p.push_back({u(rng), u(rng), u(rng)});
+  const auto boundary = lattice_box_boundary(p, 1, [](int x, int y, int z) { return vertex_id(x + 2 * y + 4 * z); });
+  const auto grid = front::make_grid(p);
+  for (std::size_t axis : {0u, 2u}) {
+    std::array<std::vector<tri>, 2> sides;
+    auto cells = front::wrap_wall(p, grid, boundary, "cube", axis, 0.37, sides);
+    BOOST_TEST(!cells.empty());
+    BOOST_TEST(!sides[0].empty());
+    BOOST_TEST(!sides[1].empty());
+    for (const auto& side : sides) {
+      for (const auto& f : side)
+        for (auto v : f) BOOST_TEST_REQUIRE((p[v][axis] < 0.37) == (&side == &sides[0]));
+      const auto more = front::wrap(p, grid, side, "side");
+      cells.insert(cells.end(), more.begin(), more.end());
+    }
+    BOOST_TEST((canonical(cells) == cgal_delaunay_3(p)));
+  }
+  std::vector<point2> q{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int i = 0; i < 3000; ++i) q.push_back({u(rng), u(rng)});
+  const std::vector<std::array<vertex_id, 2>> square{{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  const auto grid2 = front::make_grid(std::span<const point2>(q));
+  std::array<std::vector<std::array<vertex_id, 2>>, 2> sides;
+  auto cells = front::wrap_wall(q, grid2, square, "square", 1, 0.61, sides);
+  for (const auto& side : sides) {
+    const auto more = front::wrap(q, grid2, side, "side");
+    cells.insert(cells.end(), more.begin(), more.end());
+  }
+  BOOST_TEST((canonical(cells) == cgal_delaunay_2(q)));
+}
+
 BOOST_AUTO_TEST_CASE(random_points_in_square_match_cgal) {
   for (std::size_t n : {1000u, 10000u}) {
     std::mt19937_64 rng(7 + n);

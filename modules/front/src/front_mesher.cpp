@@ -1,5 +1,7 @@
 #include "gsse/front/front_mesher.hpp"
 
+#include <type_traits>
+
 #include "gsse/front/gift_wrap.hpp"
 #include "gsse/front/kernels.hpp"
 
@@ -9,13 +11,51 @@ point_grid<3> make_grid(std::span<const point3> pts) { return point_grid<3>(pts)
 point_grid<2> make_grid(std::span<const point2> pts) { return point_grid<2>(pts); }
 
 namespace {
+/// Calls go(wrapper, boundary, local) and returns its cells. Kernels whose points are the grid
+/// coordinates (not the projected facet kernel), on a grid over all the points, work on positions
+/// in the grid's point array, which is in grid order: the points a search reads then lie near the
+/// cells it scans (about 10% faster on 1e6 points). Ids are mapped in and out; the result is the
+/// same either way.
+template <class K, class Face, class Go>
+auto run_on(const K& k, const point_grid<K::grid_dim>& grid, const std::vector<Face>& boundary, Go&& go) {
+  if constexpr (std::is_same_v<typename decltype(k.p)::element_type, const std::array<double, K::grid_dim>>) {
+    if (grid.dense() && grid.size() == k.p.size()) {
+      const K local{grid.coords()};
+      std::vector<Face> b(boundary);
+      for (auto& f : b)
+        for (auto& v : f) v = grid.position(v);
+      gift_wrapper<K, true> w(local, grid);
+      auto cells = go(w, b, true);
+      for (auto& c : cells)
+        for (auto& v : c) v = grid.id_at(v);
+      return cells;
+    }
+  }
+  gift_wrapper<K> w(k, grid);
+  return go(w, boundary, false);
+}
+
 template <class K, class Face>
 auto run(const K& k, const point_grid<K::grid_dim>& grid, const std::vector<Face>& boundary, const std::string& label,
          wrap_stats* stats, std::size_t max_cells) {
-  gift_wrapper<K> w(k, grid);
-  auto cells = w.run(boundary, label, max_cells);
-  if (stats) *stats += w.stats();
-  return cells;
+  return run_on(k, grid, boundary, [&](auto& w, const std::vector<Face>& b, bool) {
+    auto cells = w.run(b, label, max_cells);
+    if (stats) *stats += w.stats();
+    return cells;
+  });
+}
+
+template <class K, class Face>
+auto run_wall(const K& k, const point_grid<K::grid_dim>& grid, const std::vector<Face>& boundary,
+              const std::string& label, std::size_t axis, double x0, std::array<std::vector<Face>, 2>& sides) {
+  return run_on(k, grid, boundary, [&](auto& w, const std::vector<Face>& b, bool local) {
+    auto cells = w.run_wall(b, label, axis, x0, sides);
+    if (local)  // the sides come back in positions
+      for (auto& side : sides)
+        for (auto& f : side)
+          for (auto& v : f) v = grid.id_at(v);
+    return cells;
+  });
 }
 
 }  // namespace
@@ -36,6 +76,18 @@ std::vector<std::array<vertex_id, 3>> wrap(std::span<const point2> pts, const po
                                            const std::vector<std::array<vertex_id, 2>>& boundary,
                                            const std::string& label, wrap_stats* stats, std::size_t max_cells) {
   return run(plane_kernel{pts}, grid, boundary, label, stats, max_cells);
+}
+std::vector<std::array<vertex_id, 4>> wrap_wall(std::span<const point3> pts, const point_grid<3>& grid,
+                                                const std::vector<std::array<vertex_id, 3>>& boundary,
+                                                const std::string& label, std::size_t axis, double x0,
+                                                std::array<std::vector<std::array<vertex_id, 3>>, 2>& sides) {
+  return run_wall(volume_kernel{pts}, grid, boundary, label, axis, x0, sides);
+}
+std::vector<std::array<vertex_id, 3>> wrap_wall(std::span<const point2> pts, const point_grid<2>& grid,
+                                                const std::vector<std::array<vertex_id, 2>>& boundary,
+                                                const std::string& label, std::size_t axis, double x0,
+                                                std::array<std::vector<std::array<vertex_id, 2>>, 2>& sides) {
+  return run_wall(plane_kernel{pts}, grid, boundary, label, axis, x0, sides);
 }
 std::vector<std::array<vertex_id, 3>> wrap_facet(std::span<const point3> pts, int axis, const point_grid<2>& grid,
                                                  const std::vector<std::array<vertex_id, 2>>& boundary,

@@ -39,21 +39,82 @@ inline std::string region_label(const conformer::labelling& l, std::size_t r) {
   return "segment " + std::to_string(l.regions[r].number) + " '" + l.regions[r].name + "'";
 }
 
+/// How often a region is halved before meshing (DeWall walls): by its share of the domain's
+/// volume, so a dominant region (the substrate) keeps both threads busy. Depends on the input
+/// only, never on the thread count, so the cell order, hence the output, is the same for any N.
+template <std::size_t D>
+std::vector<int> split_depths(const std::vector<point<D>>& pts, const std::vector<std::vector<std::array<vertex_id, D>>>& bnd) {
+  std::vector<double> vol(bnd.size(), 0);
+  double total = 0;
+  for (std::size_t r = 0; r < bnd.size(); ++r) {
+    for (const auto& f : bnd[r]) {  // divergence theorem; faces face into the region
+      if constexpr (D == 2)
+        vol[r] += pts[f[0]][0] * pts[f[1]][1] - pts[f[1]][0] * pts[f[0]][1];
+      else
+        vol[r] += dot(pts[f[0]], cross(pts[f[1]], pts[f[2]]));
+    }
+    vol[r] = std::abs(vol[r]);
+    total += vol[r];
+  }
+  std::vector<int> depth(bnd.size(), 0);
+  if (pts.size() < 20000 || !(total > 0)) return depth;  // small meshes: not worth a wall
+  for (std::size_t r = 0; r < bnd.size(); ++r) depth[r] = vol[r] > 0.5 * total ? 2 : vol[r] > 0.25 * total ? 1 : 0;
+  return depth;
+}
+
 /// Cells of every region, meshed in parallel with the points `pts` (b.points, possibly extended).
+/// Large regions are first split by walls across the longest side of their bounding box; the
+/// pieces are then meshed as regions of their own.
 template <std::size_t D>
 std::vector<std::vector<cell_t<D>>> wrap_all(const std::vector<point<D>>& pts, const conformer::boundary<D>& b,
                                              const conformer::labelling& l, unsigned threads) {
+  using face = std::array<vertex_id, D>;
   const auto grid = front::make_grid(std::span<const point<D>>(pts));
-  std::vector<std::vector<cell_t<D>>> cells(l.regions.size());
-  std::vector<std::size_t> ids(l.regions.size());
-  std::iota(ids.begin(), ids.end(), 0);
-  std::vector<std::vector<std::array<vertex_id, D>>> bnd(l.regions.size());
+  std::vector<std::vector<face>> bnd(l.regions.size());
   for (std::size_t r = 0; r < l.regions.size(); ++r) bnd[r] = region_boundary(b, l, static_cast<int>(r));
-  auto work = [&](std::size_t r) {
-    cells[r] = front::wrap(std::span<const point<D>>(pts), grid, bnd[r], region_label(l, r));
+  const auto depth = split_depths(pts, bnd);
+  struct piece {
+    std::size_t region;
+    std::vector<face> front;
+    int depth;
   };
-  // cost estimate: boundary size (volume work is unknown before meshing)
-  for_each(execution::par(threads), ids, work, [&](std::size_t r) { return static_cast<double>(bnd[r].size()); });
+  std::vector<piece> pieces;
+  for (std::size_t r = 0; r < l.regions.size(); ++r) pieces.push_back({r, std::move(bnd[r]), depth[r]});
+  std::vector<std::vector<cell_t<D>>> cells(l.regions.size());
+  while (!pieces.empty()) {
+    std::vector<std::vector<cell_t<D>>> out(pieces.size());
+    std::vector<std::array<std::vector<face>, 2>> sides(pieces.size());
+    std::vector<std::size_t> ids(pieces.size());
+    std::iota(ids.begin(), ids.end(), 0);
+    auto work = [&](std::size_t i) {
+      const auto& pc = pieces[i];
+      if (pc.depth == 0) {
+        out[i] = front::wrap(std::span<const point<D>>(pts), grid, pc.front, region_label(l, pc.region));
+        return;
+      }
+      point<D> lo = pts[pc.front[0][0]], hi = lo;
+      for (const auto& f : pc.front)
+        for (auto v : f)
+          for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], pts[v][k]), hi[k] = std::max(hi[k], pts[v][k]);
+      std::size_t axis = 0;
+      for (std::size_t k = 1; k < D; ++k)
+        if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
+      out[i] = front::wrap_wall(std::span<const point<D>>(pts), grid, pc.front, region_label(l, pc.region), axis,
+                                0.5 * (lo[axis] + hi[axis]), sides[i]);
+    };
+    // cost estimate: front size (volume work is unknown before meshing)
+    for_each(execution::par(threads), ids, work, [&](std::size_t i) {
+      return static_cast<double>(pieces[i].front.size()) * (pieces[i].depth == 0 ? 1.0 : 0.2);
+    });
+    std::vector<piece> next;
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      auto& c = cells[pieces[i].region];
+      c.insert(c.end(), out[i].begin(), out[i].end());
+      for (auto& s : sides[i])
+        if (!s.empty()) next.push_back({pieces[i].region, std::move(s), pieces[i].depth - 1});
+    }
+    pieces = std::move(next);
+  }
   return cells;
 }
 

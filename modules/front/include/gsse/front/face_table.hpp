@@ -1,10 +1,13 @@
 #pragma once
-// Hash table of the open faces of the front, keyed by sorted vertices, holding the oriented
-// vertices. Linear probing with backward-shift deletion: closed faces leave the table, so it stays
-// the size of the front (cache-resident) instead of growing with the mesh.
+// Hash table of the open faces of the front, keyed by sorted vertices plus the parity of the
+// stored orientation (16 bytes a triangle, 12 an edge). Linear probing with backward-shift
+// deletion: closed faces leave the table, so it stays the size of the front instead of growing
+// with the mesh. A lookup that misses returns the empty slot where the face belongs, so closing
+// or opening a face probes once.
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "gsse/topology/simplex.hpp"
@@ -16,39 +19,67 @@ class face_table {
  public:
   using face = std::array<vertex_id, N>;
   struct entry {
-    face key;       // sorted vertices; key[0] == no_vertex marks an empty slot
-    face oriented;  // as stored: the unmeshed side is its positive side
+    face key;             // sorted vertices; key[0] == no_vertex marks an empty slot
+    std::uint32_t odd;    // 1 if the stored orientation is an odd permutation of key
+    bool empty() const { return key[0] == no_vertex; }
+    /// The face as stored: its positive side is the unmeshed side.
+    face oriented() const {
+      face f = key;
+      if (odd) std::swap(f[0], f[1]);
+      return f;
+    }
   };
 
   explicit face_table(std::size_t expected = 64) { rehash(std::max<std::size_t>(64, expected * 2)); }
 
-  static face sorted(face f) {
-    std::sort(f.begin(), f.end());
+  /// Sorted vertices of f; `odd` tells whether sorting took an odd permutation.
+  static face sorted(face f, std::uint32_t& odd) {
+    odd = 0;
+    auto order = [&](std::size_t i, std::size_t j) {
+      if (f[i] > f[j]) std::swap(f[i], f[j]), odd ^= 1;
+    };
+    if constexpr (N == 2) {
+      order(0, 1);
+    } else {
+      static_assert(N == 3);
+      order(0, 1), order(1, 2), order(0, 1);
+    }
     return f;
+  }
+  /// The entry of face f (any orientation) or, if absent, the empty slot where it belongs (valid
+  /// until the next insertion or erasure).
+  entry* probe(const face& f) {
+    std::uint32_t odd;
+    const face k = sorted(f, odd);
+    for (std::size_t i = hash(k) & mask_;; i = (i + 1) & mask_) {
+      entry& e = slots_[i];
+      if (e.empty() || same_key(e.key, k)) return &e;
+    }
   }
   /// The entry of face f (any orientation), or nullptr.
   entry* find(const face& f) {
-    const face k = sorted(f);
-    for (std::size_t i = hash(k) & mask_;; i = (i + 1) & mask_) {
-      if (slots_[i].key[0] == no_vertex) return nullptr;
-      if (slots_[i].key == k) return &slots_[i];
-    }
+    entry* e = probe(f);
+    return e->empty() ? nullptr : e;
+  }
+  /// True if g has the orientation stored in e.
+  static bool same_orientation(const entry& e, const face& g) {
+    std::uint32_t odd;
+    sorted(g, odd);
+    return odd == e.odd;
+  }
+  /// Stores f (oriented) in the empty slot `at` returned by probe(f).
+  void fill(entry* at, const face& f) {
+    at->key = sorted(f, at->odd);
+    ++size_;
+    if (2 * size_ > slots_.size()) rehash(slots_.size() * 2);
   }
   /// Inserts f as open; f must not be present.
-  entry* insert(const face& f) {
-    if (2 * (size_ + 1) > slots_.size()) rehash(slots_.size() * 2);
-    const face k = sorted(f);
-    std::size_t i = hash(k) & mask_;
-    while (slots_[i].key[0] != no_vertex) i = (i + 1) & mask_;
-    slots_[i] = {k, f};
-    ++size_;
-    return &slots_[i];
-  }
-  /// Removes the entry e points to (from find).
+  void insert(const face& f) { fill(probe(f), f); }
+  /// Removes the entry e points to (from find or probe).
   void erase(entry* e) {
     std::size_t i = static_cast<std::size_t>(e - slots_.data());
     for (std::size_t j = (i + 1) & mask_;; j = (j + 1) & mask_) {
-      if (slots_[j].key[0] == no_vertex) break;
+      if (slots_[j].empty()) break;
       const std::size_t h = hash(slots_[j].key) & mask_;
       // slot j's entry may move to i if i lies cyclically within [h, j)
       if (((j - h) & mask_) >= ((j - i) & mask_)) {
@@ -62,30 +93,29 @@ class face_table {
   std::size_t size() const { return size_; }
 
  private:
+  static bool same_key(const face& a, const face& b) {
+    bool eq = true;
+    for (std::size_t i = 0; i < N; ++i) eq &= a[i] == b[i];
+    return eq;
+  }
   static std::size_t hash(const face& k) {
-    std::uint64_t h = 0x9E3779B97F4A7C15ull;
-    for (auto v : k) {
-      h ^= v;
-      h *= 0xBF58476D1CE4E5B9ull;
-      h ^= h >> 29;
-    }
-    return static_cast<std::size_t>(h);
+    std::uint64_t h = 0;
+    for (auto v : k) h = (h ^ v) * 0x9E3779B97F4A7C15ull;
+    return static_cast<std::size_t>(h ^ (h >> 29));
   }
   void rehash(std::size_t n) {
     std::size_t cap = 64;
     while (cap < n) cap *= 2;
     std::vector<entry> old = std::move(slots_);
-    entry empty{};
-    empty.key.fill(no_vertex);
-    slots_.assign(cap, empty);
+    entry none{};
+    none.key.fill(no_vertex);
+    slots_.assign(cap, none);
     mask_ = cap - 1;
-    size_ = 0;
     for (const auto& e : old)
-      if (e.key[0] != no_vertex) {
+      if (!e.empty()) {
         std::size_t i = hash(e.key) & mask_;
-        while (slots_[i].key[0] != no_vertex) i = (i + 1) & mask_;
+        while (!slots_[i].empty()) i = (i + 1) & mask_;
         slots_[i] = e;
-        ++size_;
       }
   }
   std::vector<entry> slots_;

@@ -30,6 +30,18 @@ std::vector<std::array<vertex_id, 3>> wrap(std::span<const point2> pts, const po
                                            const std::vector<std::array<vertex_id, 2>>& boundary,
                                            const std::string& label, wrap_stats* stats = nullptr,
                                            std::size_t max_cells = 0);
+/// A region split in two by the plane coordinate[axis] = x0 (DeWall): returns the cells with
+/// vertices on both sides (a vertex with coordinate < x0 is on side 0) and leaves in `sides[k]` the
+/// boundary of the rest of the region on side k, which wrap() can then mesh independently, e.g.
+/// in parallel. Wall cells + side cells = the cells wrap() makes for the whole region.
+std::vector<std::array<vertex_id, 4>> wrap_wall(std::span<const point3> pts, const point_grid<3>& grid,
+                                                const std::vector<std::array<vertex_id, 3>>& boundary,
+                                                const std::string& label, std::size_t axis, double x0,
+                                                std::array<std::vector<std::array<vertex_id, 3>>, 2>& sides);
+std::vector<std::array<vertex_id, 3>> wrap_wall(std::span<const point2> pts, const point_grid<2>& grid,
+                                                const std::vector<std::array<vertex_id, 2>>& boundary,
+                                                const std::string& label, std::size_t axis, double x0,
+                                                std::array<std::vector<std::array<vertex_id, 2>>, 2>& sides);
 /// Triangles of a planar facet of 3D points: edges with the facet on their left in the projection
 /// dropping `axis`; the grid must be built with the same axis.
 std::vector<std::array<vertex_id, 3>> wrap_facet(std::span<const point3> pts, int axis, const point_grid<2>& grid,

@@ -50,7 +50,9 @@ struct wrap_stats {
   }
 };
 
-template <class K>
+/// K: the geometry kernel (kernels.hpp). Local: vertex ids are positions in the grid's coords()
+/// (and the kernel's points are those coords): see wrap() in front_mesher.cpp.
+template <class K, bool Local = false>
 class gift_wrapper {
  public:
   static constexpr std::size_t D = K::dim;
@@ -85,44 +87,27 @@ class gift_wrapper {
     // face table stays in cache. Depth-first order was measured to grow it to ~40% of the faces.
     std::deque<face> queue;
     for (const face& f : boundary) {
-      if (table.find(f)) throw front_error(label + ": boundary face " + describe(f) + " appears twice");
-      table.insert(f);
+      auto* at = table.probe(f);
+      if (!at->empty()) throw front_error(label + ": boundary face " + describe(f) + " appears twice");
+      table.fill(at, f);
     }
     for (const face& f : boundary) queue.push_back(f);
+    const auto limit = [&] {
+      return auto_limit ? 64 * (grid_.size() + (overlay_ ? overlay_->size() : 0)) + boundary.size() : max_cells;
+    };
     auto build = [&](const face& f, vertex_id x) {
-      table.erase(table.find(f));
-      cell c;
-      for (std::size_t i = 0; i < D; ++i) c[i] = f[i];
-      c[D] = x;
-      // the other facets of c, each oriented to face into c (reference_simplex convention)
-      for (std::size_t i = 0; i < D; ++i) {
-        face g;
-        std::size_t m = 0;
-        for (std::size_t j = 0; j <= D; ++j)
-          if (j != i) g[m++] = c[j];
-        if ((D - i) % 2 == 1) std::swap(g[0], g[1]);
-        if (auto* h = table.find(g)) {
-          if (!same_orientation(h->oriented, g))
-            throw front_error(label + ": cell " + describe_cell(c) + " overlaps the mesh across face " + describe(g));
-          table.erase(h);
-        } else {
-          face r = g;
-          std::swap(r[0], r[1]);
-          table.insert(r);
-          queue.push_back(r);
-        }
-      }
-      cells.push_back(c);
-      stats_.max_front = std::max(stats_.max_front, table.size());
-      if (auto_limit) max_cells = 64 * (grid_.size() + (overlay_ ? overlay_->size() : 0)) + boundary.size();
-      if (cells.size() > max_cells)
-        throw front_error(label + ": more than " + std::to_string(max_cells) + " cells; giving up");
+      add_cell(table, cells, table.find(f), f, x, label, [&](const face& r) { queue.push_back(r); });
+      if (cells.size() > limit()) throw front_error(label + ": more than " + std::to_string(limit()) + " cells; giving up");
     };
     if (!create_) {
       while (!queue.empty()) {
         const face f = queue.front();
         queue.pop_front();
-        if (table.find(f)) build(f, apex(f, label));  // else closed since it was pushed
+        if (auto* at = table.find(f)) {  // else closed since it was pushed
+          const vertex_id x = apex(f, label);  // leaves the table alone: `at` stays valid
+          add_cell(table, cells, at, f, x, label, [&](const face& r) { queue.push_back(r); });
+          if (cells.size() > limit()) throw front_error(label + ": more than " + std::to_string(limit()) + " cells; giving up");
+        }
       }
     } else {
       // Point creation works by generations (the faces open at one time): first every face of
@@ -158,6 +143,46 @@ class gift_wrapper {
     return cells;
   }
 
+  /// The wall of a split (DeWall): every cell of the region with vertices on both sides of the
+  /// plane coordinate[axis] = x0 (a vertex with coordinate < x0 is on side 0, else on side 1),
+  /// built by wrapping only faces that cross the plane. The open faces left, which lie entirely
+  /// on one side, go to `sides[0]` and `sides[1]` (oriented as a boundary, unmeshed side
+  /// positive): each side is then a region of its own that can be meshed independently.
+  std::vector<cell> run_wall(const std::vector<face>& boundary, const std::string& label, std::size_t axis, double x0,
+                             std::array<std::vector<face>, 2>& sides) {
+    std::vector<cell> cells;
+    face_table<D> table(boundary.size() * 8);
+    auto side_of = [&](vertex_id v) { return k_.grid_coord(v)[axis] < x0 ? 0 : 1; };
+    auto crosses = [&](const face& f) {
+      int n = 0;
+      for (auto v : f) n += side_of(v);
+      return n != 0 && n != static_cast<int>(D);
+    };
+    std::deque<face> queue;
+    std::vector<face> parked;  // open faces not crossing the plane, in the order they appeared
+    for (const face& f : boundary) {
+      auto* at = table.probe(f);
+      if (!at->empty()) throw front_error(label + ": boundary face " + describe(f) + " appears twice");
+      table.fill(at, f);
+      (crosses(f) ? queue.push_back(f) : parked.push_back(f));
+    }
+    while (!queue.empty()) {
+      const face f = queue.front();
+      queue.pop_front();
+      auto* at = table.find(f);
+      if (!at) continue;
+      const vertex_id x = apex(f, label);
+      add_cell(table, cells, at, f, x, label,
+               [&](const face& r) { (crosses(r) ? queue.push_back(r) : parked.push_back(r)); });
+      if (cells.size() > 64 * grid_.size() + boundary.size())
+        throw front_error(label + ": more than " + std::to_string(64 * grid_.size() + boundary.size()) + " cells; giving up");
+    }
+    for (const face& f : parked)
+      if (table.find(f)) sides[static_cast<std::size_t>(side_of(f[0]))].push_back(f);
+    stats_.cells += cells.size();
+    return cells;
+  }
+
   const wrap_stats& stats() const { return stats_; }
 
  private:
@@ -170,10 +195,48 @@ class gift_wrapper {
     return true;
   }
 
+  /// Builds the cell f + x: its other facets close matching open faces or open new ones (passed
+  /// to `opened`), each oriented to face into the cell (reference_simplex convention).
+  template <class Opened>
+  void add_cell(face_table<D>& table, std::vector<cell>& cells, typename face_table<D>::entry* at, const face& f,
+                vertex_id x, const std::string& label,
+                Opened&& opened) {
+    table.erase(at);
+    cell c;
+    for (std::size_t i = 0; i < D; ++i) c[i] = f[i];
+    c[D] = x;
+    for (std::size_t i = 0; i < D; ++i) {
+      face g;
+      std::size_t m = 0;
+      for (std::size_t j = 0; j <= D; ++j)
+        if (j != i) g[m++] = c[j];
+      if ((D - i) % 2 == 1) std::swap(g[0], g[1]);
+      auto* h = table.probe(g);
+      if (!h->empty()) {
+        if (!face_table<D>::same_orientation(*h, g))
+          throw front_error(label + ": cell " + describe_cell(c) + " overlaps the mesh across face " + describe(g));
+        table.erase(h);
+      } else {
+        face r = g;
+        std::swap(r[0], r[1]);
+        table.fill(h, r);
+        opened(r);
+      }
+    }
+    cells.push_back(c);
+    stats_.max_front = std::max(stats_.max_front, table.size());
+  }
+
   template <class F>
   bool visit_box(const coord& lo, const coord& hi, F&& f) const {
-    if (!grid_.visit_box(lo, hi, f)) return false;
+    if (!grid_.template visit_box<Local>(lo, hi, f)) return false;
     return !overlay_ || overlay_->visit_box(lo, hi, f);
+  }
+  /// The points of the grid cells meeting the ball (c, r) and the half-space dot(n, x) >= d.
+  template <class F>
+  bool visit_cap(const coord& c, double r, const coord& n, double d, F&& f) const {
+    if (!grid_.template visit_ball<Local>(c, r, n, d, f)) return false;
+    return !overlay_ || overlay_->visit_ball(c, r, n, d, f);
   }
 
   bool in_face(const face& f, vertex_id v) const {
@@ -182,52 +245,168 @@ class gift_wrapper {
     return false;
   }
 
+  /// A point seen by the cap search: id, grid coordinates and ranking hint.
+  struct seen {
+    vertex_id id;
+    double t;
+    coord q;
+  };
+
+  /// The half-space {x : dot(n, x) >= d} holding the positive side of the face of probe pr, its
+  /// plane moved back by a margin that covers the double plane's error for points within
+  /// distance `reach` of the face (no half-space, n = 0, if the plane is ill-conditioned).
+  static void positive_side(const typename K::probe& pr, double reach, coord& n, double& d) {
+    n = coord{};
+    d = -1;
+    if (pr.tilt < 1e-4) {
+      n = pr.n;
+      d = dot(n, pr.cc) - 4 * pr.tilt * (2 * reach + 2 * pr.l) - 1e-12 * (reach + pr.l);
+    }
+  }
+
+  /// True if every point of the ball (c1, r1) in the half-space {dot(n, x) >= d} lies in the ball
+  /// (c2, r2): the farthest such point from c2 is the far end of the ball along c1 - c2 if that
+  /// end lies in the half-space, else on the circle where the sphere meets the plane.
+  static bool covered(const coord& c1, double r1, const coord& n, double d, const coord& c2, double r2) {
+    const coord e = c1 - c2;
+    const double le = std::sqrt(dot(e, e));
+    double far = le + r1;
+    const coord tip = le > 0 ? c1 + (r1 / le) * e : c1;
+    if (dot(n, n) > 0 && dot(n, tip) < d) {
+      const double s = d - dot(n, c1);  // signed offset of the plane from c1 along n
+      if (s * s >= r1 * r1) return s <= 0;  // plane misses the ball: all in (s < 0) or all out
+      const double rho = std::sqrt(r1 * r1 - s * s);
+      const coord o = c1 + s * n;  // centre of the circle
+      const coord w0 = c2 - o;
+      const double a = dot(w0, n);
+      const double w = std::sqrt(std::max(0.0, dot(w0, w0) - a * a));
+      far = std::sqrt((rho + w) * (rho + w) + a * a);
+    }
+    return far * (1 + 1e-12) <= r2;
+  }
+
   vertex_id apex(const face& f, const std::string& label) {
-    vertex_id best = no_vertex;
     const auto pr = k_.prepare(f);
-    coord lo, hi;
-    k_.seed(pr, lo, hi);
-    // phase 1: the best-ranked vertex (double hint only) of a growing box that is exactly on the
-    // positive side; any such vertex will do, phase 2 makes the exact choice
+    // Caps: the balls through the face's circumcircle, by height h above its plane; a vertex's
+    // hint t is the centre offset of its ball, so the vertices in the cap of height h are those
+    // with t <= (h^2 - r^2) / 2h. Growing caps from a low one find the best-ranked vertex while
+    // scanning little beyond its ball: a face whose empty ball is a thin lens (beside a large
+    // boundary face) scans only the lens.
+    vertex_id best = no_vertex;
     double best_t = std::numeric_limits<double>::infinity();
-    for (;;) {
-      visit_box(lo, hi, [&](vertex_id y, const coord& q) {
-        const double t = K::estimate(pr, q);
-        if (!(t < best_t) || in_face(f, y)) return true;
-        ++stats_.side_tests;
-        if (k_.side(f, y) <= 0) return true;
-        best = y;
-        best_t = t;
+    coord ct{}, n{};
+    double Rt = 0, d = 0;
+    // beyond a cap four times as high as the grid is wide, what is left lies nearly in the face's
+    // plane, outside its circumcircle: rank it all
+    double top = 0;
+    for (std::size_t a = 0; a < G; ++a) top += (grid_.upper()[a] - grid_.lower()[a]) * (grid_.upper()[a] - grid_.lower()[a]);
+    top = 4 * std::sqrt(top);
+    for (double h = std::min(2 * std::sqrt(pr.r2), 2 * grid_.mean_step());; h *= 2) {
+      const double t = (h * h - pr.r2) / (2 * h);
+      Rt = h - t;
+      if (h > top || !std::isfinite(Rt)) {
+        best = far_apex(f, pr, label);
+        return settle(f, pr, best, K::estimate(pr, k_.grid_coord(best)));
+      }
+      for (std::size_t a = 0; a < G; ++a) ct[a] = pr.cc[a] + t * pr.n[a];
+      positive_side(pr, Rt, n, d);
+      // all balls of the pencil meet on the face's circumcircle: scan a little wider than the cap
+      // so that the ball of a vertex inside it, padded and cut by the moved-back plane, fits in
+      Rt = Rt * (1 + 1e-6) + 4 * (dot(n, pr.cc) - d);
+      seen_.clear();
+      const double R2 = Rt * Rt;
+      visit_cap(ct, Rt, n, d, [&](vertex_id y, const coord& q) {
+        ++stats_.visits;
+        double d2 = 0;
+        for (std::size_t a = 0; a < G; ++a) d2 += (q[a] - ct[a]) * (q[a] - ct[a]);
+        if (d2 > R2 || dot(n, q) < d || in_face(f, y)) return true;
+        seen_.push_back({y, K::estimate(pr, q), q});
         return true;
       });
-      if (best != no_vertex) break;
-      bool covers = true;
-      for (std::size_t a = 0; a < G; ++a) covers &= lo[a] <= grid_.lower()[a] && hi[a] >= grid_.upper()[a];
-      if (covers) {
-        // no vertex ranks finite (all nearly in the face's plane): take any exactly positive one
-        visit_box(lo, hi, [&](vertex_id y, const coord&) {
-          if (in_face(f, y)) return true;
+      // the best-ranked vertex is nearly always exactly positive; sort only when it is not
+      auto by_rank = [](const seen& x, const seen& y) { return x.t < y.t || (x.t == y.t && x.id < y.id); };
+      const auto first = std::min_element(seen_.begin(), seen_.end(), by_rank);
+      if (first != seen_.end() && first->t <= t) {
+        ++stats_.side_tests;
+        if (k_.side(f, first->id) > 0) {
+          best = first->id;
+          best_t = first->t;
+          break;
+        }
+        std::sort(seen_.begin(), seen_.end(), by_rank);
+        for (const seen& s : seen_) {
+          if (!(s.t <= t)) break;
           ++stats_.side_tests;
-          if (k_.side(f, y) <= 0) return true;
-          best = y;
-          return false;
-        });
-        if (best == no_vertex) throw front_error(label + ": no vertex on the inner side of face " + describe(f));
-        break;
-      }
-      for (std::size_t a = 0; a < G; ++a) {
-        const double w = 0.5 * (hi[a] - lo[a]);  // double the box width
-        lo[a] -= w;
-        hi[a] += w;
+          if (k_.side(f, s.id) > 0) {
+            best = s.id;
+            best_t = s.t;
+            break;
+          }
+        }
+        if (best != no_vertex) break;
       }
     }
-    // phase 2: scan the current best ball (double, padded so it contains the exact one).
-    // While some vertex in it ranks clearly better by the double hint, jump to the best-ranked
-    // one (exactly on the positive side): the ball shrinks fast without exact in-ball tests.
-    // When none does, the vertices left in the padded ball (near ties and rounding cases) are
-    // decided exactly; an exact improvement restarts the loop. The hint only orders the search:
-    // the result is the vertex no other beats exactly.
-    best_t = K::estimate(pr, k_.grid_coord(best));
+    // The exact choice. If the (padded) ball of the best-ranked vertex, on the positive side, lies
+    // in the cap just scanned, every vertex that can beat it exactly was seen: one exact pass over
+    // those in its ball settles it (the perturbed order is strict, so a vertex that does not beat
+    // the current best cannot beat a later one: their caps are nested).
+    if constexpr (K::strict_order) {
+      coord c;
+      double r = 0;
+      if (k_.ball(f, best, c, r) && covered(c, r, n, d, ct, Rt)) {
+        const double r2 = r * r;
+        for (const seen& s : seen_) {
+          if (s.id == best) continue;
+          double d2 = 0;
+          for (std::size_t a = 0; a < G; ++a) d2 += (s.q[a] - c[a]) * (s.q[a] - c[a]);
+          if (d2 > r2) continue;
+          ++stats_.side_tests;
+          if (k_.side(f, s.id) <= 0) continue;
+          ++stats_.candidate_tests;
+          if (k_.beats(f, best, s.id)) best = s.id;
+        }
+        return best;
+      }
+    }
+    return settle(f, pr, best, best_t);
+  }
+
+  /// The apex when no cap finds one (the remaining vertices lie nearly in the face's plane, far
+  /// from the face): the best-ranked vertex exactly on the positive side, or if none ranks finite
+  /// any vertex exactly on the positive side.
+  vertex_id far_apex(const face& f, const typename K::probe& pr, const std::string& label) {
+    vertex_id best = no_vertex;
+    double best_t = std::numeric_limits<double>::infinity();
+    // the whole grid on the positive side
+    coord c, n;
+    double r = 0, d = 0;
+    for (std::size_t a = 0; a < G; ++a) {
+      c[a] = 0.5 * (grid_.lower()[a] + grid_.upper()[a]);
+      r += (grid_.upper()[a] - grid_.lower()[a]) * (grid_.upper()[a] - grid_.lower()[a]);
+    }
+    r = std::sqrt(r) + pr.l;
+    positive_side(pr, r + std::sqrt(dot(c - pr.cc, c - pr.cc)), n, d);
+    visit_cap(c, r, n, d, [&](vertex_id y, const coord& q) {
+      ++stats_.visits;
+      const double t = K::estimate(pr, q);
+      if ((best != no_vertex && !(t < best_t)) || in_face(f, y)) return true;
+      ++stats_.side_tests;
+      if (k_.side(f, y) <= 0) return true;
+      best = y;
+      best_t = t;
+      return true;
+    });
+    if (best == no_vertex) throw front_error(label + ": no vertex on the inner side of face " + describe(f));
+    return best;
+  }
+
+  /// The exact choice by scanning balls: scan the current best ball (double, padded so it
+  /// contains the exact one). While some vertex in it ranks clearly better by the double hint,
+  /// jump to the best-ranked one (exactly on the positive side): the ball shrinks fast without
+  /// exact in-ball tests. When none does, the vertices left in the padded ball (near ties and
+  /// rounding cases) are decided exactly; an exact improvement restarts the loop. The hint only
+  /// orders the search: the result is the vertex no other beats exactly.
+  vertex_id settle(const face& f, const typename K::probe& pr, vertex_id best, double best_t) {
     std::vector<vertex_id> near;
     // Points of a slanted facet are coplanar only up to rounding; there "beats" need not be a
     // strict order, so a walk could cycle. It never returns to an earlier best: it terminates, and
@@ -236,24 +415,15 @@ class gift_wrapper {
     visited_.push_back(best);
     auto fresh = [&](vertex_id y) { return std::find(visited_.begin(), visited_.end(), y) == visited_.end(); };
     for (;;) {
-      coord c;
-      double r = 0;
+      coord c, n;
+      double r = 0, d = 0;
       const bool reliable = k_.ball(f, best, c, r);
-      if (reliable) {
-        for (std::size_t a = 0; a < G; ++a) {
-          lo[a] = c[a] - r;
-          hi[a] = c[a] + r;
-        }
-      } else {
-        lo = grid_.lower();
-        hi = grid_.upper();
-      }
       const double r2 = r * r;
       const double margin = 1e-9 * (std::abs(best_t) + pr.l);
       vertex_id jump = no_vertex;
       double jump_t = best_t - margin;
       near.clear();
-      visit_box(lo, hi, [&](vertex_id y, const coord& q) {
+      auto consider = [&](vertex_id y, const coord& q) {
         ++stats_.visits;
         if (reliable) {
           double d2 = 0;
@@ -273,7 +443,12 @@ class gift_wrapper {
         }
         near.push_back(y);
         return true;
-      });
+      };
+      positive_side(pr, r, n, d);
+      if (reliable)
+        visit_cap(c, r, n, d, consider);
+      else
+        visit_box(grid_.lower(), grid_.upper(), consider);
       // every move is an exact improvement, so the walk cannot cycle
       if (jump != no_vertex) {
         ++stats_.candidate_tests;
@@ -296,17 +471,21 @@ class gift_wrapper {
           changed = true;
         }
       }
-      if (!changed) break;
+      // With a strict order (perturbed balls in 3D and 2D) one exact pass over the ball is final:
+      // the new best's cap lies inside the old one, and y not beating the old best cannot beat
+      // the new one. Slanted facets (rounded coplanarity) rescan.
+      if (!changed || K::strict_order) break;
       best_t = K::estimate(pr, k_.grid_coord(best));
     }
     return best;
   }
 
+  vertex_id global(vertex_id v) const { return Local ? grid_.id_at(v) : v; }
   std::string describe(const face& f) const {
     std::string s = "(";
     for (std::size_t i = 0; i < D; ++i) {
       if (i) s += ", ";
-      s += std::to_string(f[i] + 1);
+      s += std::to_string(global(f[i]) + 1);
       s += " at [";
       const auto c = k_.grid_coord(f[i]);
       for (std::size_t a = 0; a < G; ++a) s += (a ? " " : "") + std::to_string(c[a]);
@@ -316,7 +495,7 @@ class gift_wrapper {
   }
   std::string describe_cell(const cell& c) const {
     std::string s = "(";
-    for (std::size_t i = 0; i <= D; ++i) s += (i ? ", " : "") + std::to_string(c[i] + 1);
+    for (std::size_t i = 0; i <= D; ++i) s += (i ? ", " : "") + std::to_string(global(c[i]) + 1);
     return s + ")";
   }
 
@@ -328,6 +507,7 @@ class gift_wrapper {
   std::map<face, unsigned> deferred_;
   wrap_stats stats_;
   std::vector<vertex_id> visited_;
+  std::vector<seen> seen_;
 };
 
 }  // namespace gsse::front

@@ -7,10 +7,13 @@
 //   beats(f, x, y)      true if y is inside the perturbed circumball of f+x (side(f,x) > 0)
 //   ball(f, x, c, r)    centre and radius in grid coordinates of a ball containing that
 //                       circumball (the projection of a ball is inside the projected ball);
-//                       false if the construction is unreliable
-//   prepare(f) -> probe double data of f; estimate(probe, q): the "Delaunay distance" of a point
-//                       (offset of the circumcentre of f+q along f's normal; +inf behind f), a
-//                       ranking hint only: every decision is confirmed exactly
+//                       constructed exactly when the double construction is unreliable (a
+//                       nearly flat simplex); false only if it overflows
+//   prepare(f) -> probe double data of f: circumcentre cc, unit normal n, squared circumradius
+//                       r2, longest edge l, tilt (a bound on the angle error of n);
+//                       estimate(probe, q): the "Delaunay distance" of a point (offset of the
+//                       circumcentre of f+q along f's normal; +inf behind f), a ranking hint
+//                       only: every decision is confirmed exactly
 //   seed(probe, lo, hi) first search box
 //   grid_coord(v)       grid coordinates of vertex v
 #include <array>
@@ -18,6 +21,7 @@
 #include <limits>
 #include <span>
 
+#include "gsse/geometry/exact_ball.hpp"
 #include "gsse/geometry/predicates.hpp"
 
 namespace gsse::front {
@@ -34,6 +38,7 @@ inline double padded(double r, double rel, double edge) { return r * (1 + 4 * re
 /// Tetrahedra in 3D.
 struct volume_kernel {
   static constexpr std::size_t dim = 3, grid_dim = 3;
+  static constexpr bool strict_order = true;
   using face = std::array<vertex_id, 3>;
   using coord = std::array<double, 3>;
   std::span<const point3> p;
@@ -50,7 +55,10 @@ struct volume_kernel {
     const double det = dot(u, vw);
     const double scale = std::sqrt(dot(u, u) * dot(v, v) * dot(w, w));
     const double rel = det == 0 ? 1.0 : scale / std::abs(det) * detail::eps * 64;
-    if (rel > detail::max_relative_error) return false;
+    if (rel > detail::max_relative_error) {  // nearly flat: construct exactly, round outward
+      geometry::exact_circumball(a, p[f[1]], p[f[2]], p[x], centre, r);
+      return std::isfinite(r);
+    }
     const point3 c = (1.0 / (2 * det)) * (dot(u, u) * vw + dot(v, v) * wu + dot(w, w) * uv);
     r = detail::padded(std::sqrt(dot(c, c)), rel, std::sqrt(std::max({dot(u, u), dot(v, v), dot(w, w)})));
     centre = a + c;
@@ -58,7 +66,7 @@ struct volume_kernel {
   }
   struct probe {
     point3 cc, n;
-    double r2, l;
+    double r2, l, tilt;  // tilt: bound on the direction error of n (radians)
   };
   probe prepare(const face& f) const {
     const point3& a = p[f[0]];
@@ -67,7 +75,7 @@ struct volume_kernel {
     const double nn = dot(n, n);
     const point3 c = (1.0 / (2 * nn)) * cross(dot(u, u) * v - dot(v, v) * u, n);
     const double l = std::sqrt(std::max({dot(u, u), dot(v, v), squared_distance(p[f[1]], p[f[2]])}));
-    return {a + c, (1.0 / std::sqrt(nn)) * n, dot(c, c), l};
+    return {a + c, (1.0 / std::sqrt(nn)) * n, dot(c, c), l, 64 * detail::eps * l * l / std::sqrt(nn)};
   }
   static double estimate(const probe& pr, const coord& q) {
     const point3 d = q - pr.cc;
@@ -87,10 +95,10 @@ struct volume_kernel {
 /// squared half length and length, in grid coordinates.
 struct edge_probe {
   point2 cc, n;
-  double r2, l;
+  double r2, l, tilt;
   static edge_probe of(const point2& a, const point2& b) {
     const double l = distance(a, b);
-    return {0.5 * (a + b), {-(b[1] - a[1]) / l, (b[0] - a[0]) / l}, 0.25 * l * l, l};
+    return {0.5 * (a + b), {-(b[1] - a[1]) / l, (b[0] - a[0]) / l}, 0.25 * l * l, l, 64 * detail::eps};
   }
   static double estimate(const edge_probe& pr, const std::array<double, 2>& q) {
     const point2 d = q - pr.cc;
@@ -109,6 +117,7 @@ struct edge_probe {
 /// Triangles in 2D.
 struct plane_kernel {
   static constexpr std::size_t dim = 2, grid_dim = 2;
+  static constexpr bool strict_order = true;
   using face = std::array<vertex_id, 2>;
   using coord = std::array<double, 2>;
   std::span<const point2> p;
@@ -124,7 +133,10 @@ struct plane_kernel {
     const double d = 2 * (u[0] * v[1] - u[1] * v[0]);
     const double scale = std::sqrt(dot(u, u) * dot(v, v));
     const double rel = d == 0 ? 1.0 : scale / std::abs(d) * detail::eps * 64;
-    if (rel > detail::max_relative_error) return false;
+    if (rel > detail::max_relative_error) {
+      geometry::exact_circumball(a, p[f[1]], p[x], centre, r);
+      return std::isfinite(r);
+    }
     const point2 c{(v[1] * dot(u, u) - u[1] * dot(v, v)) / d, (u[0] * dot(v, v) - v[0] * dot(u, u)) / d};
     r = detail::padded(std::sqrt(dot(c, c)), rel, std::sqrt(std::max(dot(u, u), dot(v, v))));
     centre = a + c;
@@ -140,6 +152,7 @@ struct plane_kernel {
 /// `axis`, circles tested exactly as equatorial balls (see in_coplanar_circle_perturbed).
 struct facet_kernel {
   static constexpr std::size_t dim = 2, grid_dim = 2;
+  static constexpr bool strict_order = false;
   using face = std::array<vertex_id, 2>;
   using coord = std::array<double, 2>;
   std::span<const point3> p;
@@ -157,7 +170,12 @@ struct facet_kernel {
     const double nn = dot(n, n);
     const double scale = dot(u, u) * dot(v, v);
     const double rel = nn == 0 ? 1.0 : scale / nn * detail::eps * 64;
-    if (rel > detail::max_relative_error) return false;
+    if (rel > detail::max_relative_error) {
+      point3 c3;
+      geometry::exact_circumball(a, p[f[1]], p[x], c3, r);
+      centre = geometry::project(c3, axis);
+      return std::isfinite(r);
+    }
     const point3 c = (1.0 / (2 * nn)) * cross(dot(u, u) * v - dot(v, v) * u, n);
     r = detail::padded(std::sqrt(dot(c, c)), rel, std::sqrt(std::max(dot(u, u), dot(v, v))));
     centre = geometry::project(a + c, axis);

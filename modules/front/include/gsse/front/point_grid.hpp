@@ -29,6 +29,8 @@ class point_grid {
     n_ = coords.size();
     lo_.fill(0);
     hi_.fill(0);
+    step_.fill(0);
+    extent_ = 0;
     if (coords.empty()) {
       dims_.fill(1);
       start_.assign(2, 0);
@@ -62,9 +64,12 @@ class point_grid {
         total *= static_cast<std::size_t>(dims_[a]);
       }
     }
+    extent_ = 0;
     for (std::size_t a = 0; a < G; ++a) {
       const double e = hi_[a] - lo_[a];
       inv_[a] = e > 0 ? static_cast<double>(dims_[a]) / e : 0.0;
+      step_[a] = e / static_cast<double>(dims_[a]);
+      extent_ = std::max(extent_, e);
     }
     start_.assign(total + 1, 0);
     std::vector<std::uint32_t> cell_of(n_);
@@ -75,18 +80,25 @@ class point_grid {
     for (std::size_t i = 1; i < start_.size(); ++i) start_[i] += start_[i - 1];
     ids_.resize(n_);
     xyz_.resize(n_);
+    positions_.assign(ids.empty() ? n_ : 0, 0);
     std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
     for (std::size_t i = 0; i < n_; ++i) {
       const auto k = fill[cell_of[i]]++;
       ids_[k] = ids.empty() ? static_cast<vertex_id>(i) : ids[i];
+      if (ids.empty()) positions_[i] = k;
       xyz_[k] = coords[i];
     }
   }
 
+  /// Cell index along axis a of coordinate x, clamped to the grid (also for huge or infinite x).
+  long axis_index(std::size_t a, double x) const {
+    const double t = (x - lo_[a]) * inv_[a];
+    if (!(t > 0)) return 0;  // also NaN (an infinite x on a flat axis)
+    return t >= static_cast<double>(dims_[a]) ? dims_[a] - 1 : static_cast<long>(t);
+  }
   std::array<long, G> cell_index(const coord& c) const {
     std::array<long, G> k;
-    for (std::size_t a = 0; a < G; ++a)
-      k[a] = std::clamp<long>(static_cast<long>(std::floor((c[a] - lo_[a]) * inv_[a])), 0, dims_[a] - 1);
+    for (std::size_t a = 0; a < G; ++a) k[a] = axis_index(a, c[a]);
     return k;
   }
   std::size_t linear(const std::array<long, G>& k) const {
@@ -96,9 +108,10 @@ class point_grid {
   }
   /// Calls f(vertex_id, const coord&) for every point in grid cells overlapping [lo, hi].
   /// Returns false (and stops) if f returns false.
-  template <class F>
+  /// With Local, f gets the point's position in the grid (see coords()) instead of its id.
+  template <bool Local = false, class F>
   bool visit_box(const coord& lo, const coord& hi, F&& f) const {
-    return visit_cells(lo, hi, [&](std::size_t cell) { return visit_cell(cell, f); });
+    return visit_cells(lo, hi, [&](std::size_t cell) { return visit_cell<Local>(cell, f); });
   }
   /// Calls g(linear cell index) for every grid cell overlapping [lo, hi]; stops if g returns false.
   template <class F>
@@ -116,14 +129,91 @@ class point_grid {
     }
     return true;
   }
-  std::size_t cell_count() const { return start_.size() - 1; }
+  /// Calls g(linear cell index) for every grid cell that meets the ball (c, r) and the half-space
+  /// {x : dot(n, x) >= d} (n = 0, d <= 0: no half-space), row by row: each row of cells along
+  /// axis 0 is clipped to the ball's slice and the half-space. Conservative: cell bounds are padded
+  /// by 1e-10 of the grid's extent against rounding in the point-to-cell assignment.
   template <class F>
+  bool visit_cells(const coord& c, double r, const coord& n, double d, F&& g) const {
+    coord lo, hi;
+    for (std::size_t a = 0; a < G; ++a) lo[a] = c[a] - r, hi[a] = c[a] + r;
+    const auto ka = cell_index(lo), kb = cell_index(hi);
+    bool small = true;  // a few cells: clipping them would cost more than visiting them
+    for (std::size_t a = 0; a < G; ++a) small &= kb[a] - ka[a] <= 1;
+    if (small) return visit_cells(lo, hi, g);
+    const double pad = 1e-10 * extent_;
+    const double r2 = (r + pad) * (r + pad);
+    // the x-cells of one row (fixed higher coordinates, bounds [rlo, rhi] on axes >= 1)
+    auto row = [&](const coord& rlo, const coord& rhi, double rest, std::size_t base) {
+      const double s = std::sqrt(rest);
+      double xa = c[0] - s, xb = c[0] + s;
+      double m = -d;  // max of dot(n, x) - d over the row's higher axes
+      for (std::size_t a = 1; a < G; ++a) m += n[a] * (n[a] > 0 ? rhi[a] : rlo[a]);
+      if (n[0] > 0) xa = std::max(xa, -m / n[0] - pad);
+      else if (n[0] < 0) xb = std::min(xb, -m / n[0] + pad);
+      else if (m < 0) return true;
+      if (!(xa <= xb)) return true;
+      const long x0 = std::max(ka[0], axis_index(0, xa)), x1 = std::min(kb[0], axis_index(0, xb));
+      for (long x = x0; x <= x1; ++x)
+        if (!g(base + static_cast<std::size_t>(x))) return false;
+      return true;
+    };
+    auto gap = [&](std::size_t a, long k, double& clo, double& chi) {  // distance of c[a] to cell k
+      clo = lo_[a] + static_cast<double>(k) * step_[a] - pad;
+      chi = clo + step_[a] + 2 * pad;
+      const double e = std::max({0.0, clo - c[a], c[a] - chi});
+      return e * e;
+    };
+    coord rlo{}, rhi{};
+    if constexpr (G == 2) {
+      for (long y = ka[1]; y <= kb[1]; ++y) {
+        const double rest = r2 - gap(1, y, rlo[1], rhi[1]);
+        if (rest >= 0 && !row(rlo, rhi, rest, static_cast<std::size_t>(y) * static_cast<std::size_t>(dims_[0])))
+          return false;
+      }
+    } else {
+      for (long z = ka[2]; z <= kb[2]; ++z) {
+        const double rz = r2 - gap(2, z, rlo[2], rhi[2]);
+        if (rz < 0) continue;
+        for (long y = ka[1]; y <= kb[1]; ++y) {
+          const double rest = rz - gap(1, y, rlo[1], rhi[1]);
+          if (rest >= 0 && !row(rlo, rhi, rest, linear({0, y, z}))) return false;
+        }
+      }
+    }
+    return true;
+  }
+  /// Calls f(vertex_id, const coord&) for every point in the cells visit_cells(c, r, n, d) lists.
+  template <bool Local = false, class F>
+  bool visit_ball(const coord& c, double r, const coord& n, double d, F&& f) const {
+    return visit_cells(c, r, n, d, [&](std::size_t cell) { return visit_cell<Local>(cell, f); });
+  }
+  std::size_t cell_count() const { return start_.size() - 1; }
+  /// Mean edge length of a grid cell over the non-flat axes.
+  double mean_step() const {
+    double s = 0;
+    int k = 0;
+    for (std::size_t a = 0; a < G; ++a)
+      if (step_[a] > 0) s += step_[a], ++k;
+    return k ? s / k : 1.0;
+  }
+  const std::array<long, G>& dims() const { return dims_; }
+  template <bool Local = false, class F>
   bool visit_cell(std::size_t cell, F& f) const {
     for (auto k = start_[cell]; k < start_[cell + 1]; ++k)
-      if (!f(ids_[k], xyz_[k])) return false;
+      if (!f(Local ? static_cast<vertex_id>(k) : ids_[k], xyz_[k])) return false;
     return true;
   }
   std::size_t size() const { return n_; }
+  /// The grid coordinates in grid order: spatially coherent, which is why the front mesher works
+  /// on positions in this array rather than on point ids.
+  std::span<const coord> coords() const { return xyz_; }
+  /// The id of the point at position k of coords().
+  vertex_id id_at(std::size_t k) const { return ids_[k]; }
+  /// True if built over points 0..size()-1 (not a subset): position() is available.
+  bool dense() const { return positions_.size() == n_; }
+  /// The position in coords() of point v (dense grids).
+  std::uint32_t position(vertex_id v) const { return positions_[v]; }
   const coord& lower() const { return lo_; }
   const coord& upper() const { return hi_; }
   /// Edge length of a grid cell along axis a.
@@ -131,10 +221,12 @@ class point_grid {
 
  private:
   std::size_t n_ = 0;
-  coord lo_{}, hi_{}, inv_{};
+  coord lo_{}, hi_{}, inv_{}, step_{};
+  double extent_ = 0;
   std::array<long, G> dims_{};
   std::vector<std::uint32_t> start_;
   std::vector<vertex_id> ids_;
+  std::vector<std::uint32_t> positions_;  // dense grids: position of point i
   std::vector<coord> xyz_;
 };
 

@@ -27,15 +27,23 @@ class point_overlay {
   template <class F>
   bool visit_box(const coord& lo, const coord& hi, F&& f) const {
     if (ids_.empty()) return true;
-    return base_.visit_cells(lo, hi, [&](std::size_t cell) {
-      for (auto k = head_[cell]; k >= 0; k = next_[static_cast<std::size_t>(k)])
-        if (!f(ids_[static_cast<std::size_t>(k)], xyz_[static_cast<std::size_t>(k)])) return false;
-      return true;
-    });
+    return base_.visit_cells(lo, hi, [&](std::size_t cell) { return visit_list(cell, f); });
+  }
+  /// Same contract as point_grid::visit_ball, over the inserted points only.
+  template <class F>
+  bool visit_ball(const coord& c, double r, const coord& n, double d, F&& f) const {
+    if (ids_.empty()) return true;
+    return base_.visit_cells(c, r, n, d, [&](std::size_t cell) { return visit_list(cell, f); });
   }
   std::size_t size() const { return ids_.size(); }
 
  private:
+  template <class F>
+  bool visit_list(std::size_t cell, F& f) const {
+    for (auto k = head_[cell]; k >= 0; k = next_[static_cast<std::size_t>(k)])
+      if (!f(ids_[static_cast<std::size_t>(k)], xyz_[static_cast<std::size_t>(k)])) return false;
+    return true;
+  }
   const point_grid<G>& base_;
   std::vector<std::int32_t> head_, next_;
   std::vector<vertex_id> ids_;
