@@ -65,6 +65,11 @@ BOOST_AUTO_TEST_CASE(non_manifold_complex_is_rejected) {
   x.add_cell({1, 0, 3});
   x.add_cell({0, 1, 4});
   BOOST_CHECK_THROW(x.finalize(), std::runtime_error);
+  simplicial_complex<3> z;  // three tetrahedra on triangle 012
+  z.add_cell({0, 1, 2, 3});
+  z.add_cell({1, 0, 2, 4});
+  z.add_cell({0, 1, 2, 5});
+  BOOST_CHECK_THROW(z.finalize(), std::runtime_error);
   simplicial_complex<2> y;
   y.add_cell({0, 1, 2});
   BOOST_CHECK_THROW((void)y.neighbour(0, 0), std::logic_error);  // incidence before finalize()

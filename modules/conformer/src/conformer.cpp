@@ -5,7 +5,9 @@
 #include <cstdlib>
 #include <map>
 #include <set>
+#include <tuple>
 
+#include "balls.hpp"
 #include "encroachment.hpp"
 #include "gsse/front/front_mesher.hpp"
 #include "gsse/front/gift_wrap.hpp"
@@ -116,14 +118,15 @@ class state {
   /// smallest id (deterministic), or no_vertex.
   vertex_id segment_encroacher(vertex_id a, vertex_id b) {
     const auto& p = out_.points;
-    const point<D> c = 0.5 * (p[a] + p[b]);
-    const double r = 0.5 * distance(p[a], p[b]) * (1 + 1e-9) + 1e-300;
+    const auto [c, r] = detail::diametral_bound(p[a], p[b]);
     point<D> lo, hi;
     for (std::size_t k = 0; k < D; ++k) lo[k] = c[k] - r, hi[k] = c[k] + r;
     vertex_id strict = no_vertex;
     ties_.clear();
+    const double r2 = r * r;
     grid_.visit(lo, hi, [&](vertex_id y) {
       if (y == a || y == b || (strict != no_vertex && y > strict)) return;
+      if (squared_distance(c, p[y]) > r2) return;  // double prefilter, padded
       const int s = geometry::in_diametral(p[a], p[b], p[y]);
       if (s > 0) strict = y;
       else if (s == 0) ties_.push_back(y);
@@ -426,16 +429,15 @@ class state3 : public state<3> {
   vertex_id facet_encroacher(vertex_id a, vertex_id b, vertex_id c, std::vector<vertex_id>& ties) const {
     const auto& p = out_.points;
     // equatorial ball: circumcircle centre and radius
-    const point3 u = p[b] - p[a], v = p[c] - p[a], n = cross(u, v);
-    const double nn = dot(n, n);
-    const point3 cc = p[a] + (1.0 / (2 * nn)) * cross(dot(u, u) * v - dot(v, v) * u, n);
-    const double r = distance(cc, p[a]) * (1 + 1e-6) + 1e-300;
+    const auto [cc, r] = detail::equatorial_bound(p[a], p[b], p[c]);
     point3 lo, hi;
     for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
     vertex_id strict = no_vertex;
     ties.clear();
+    const double r2 = r * r;
     grid_.visit(lo, hi, [&](vertex_id y) {
       if (y == a || y == b || y == c || (strict != no_vertex && y > strict)) return;
+      if (squared_distance(cc, p[y]) > r2) return;  // double prefilter, padded
       const int s = geometry::in_equatorial(p[a], p[b], p[c], p[y]);
       if (s > 0) strict = y;
       else if (s == 0) ties.push_back(y);
@@ -523,8 +525,8 @@ class state3 : public state<3> {
         const auto& ch = edges_[e].chain;
         for (std::size_t i = 0; i + 1 < ch.size(); ++i) {
           const point3 &a = out_.points[ch[i]], &b = out_.points[ch[i + 1]];
-          const double r = 0.5 * distance(a, b) * (1 + 1e-9) + 1e-300;
-          if (squared_distance(0.5 * (a + b), q) > r * r) continue;  // double prefilter, padded
+          const auto [c, r] = detail::diametral_bound(a, b);
+          if (squared_distance(c, q) > r * r) continue;  // double prefilter, padded
           if (geometry::in_diametral(a, b, q) >= 0) return std::pair{e, i};
         }
       }
@@ -550,9 +552,7 @@ class state3 : public state<3> {
       for (std::size_t t = 0; t < S.triangles.size(); ++t) {
         const auto& T = S.triangles[t];
         if (S.checked) {
-          const point3 u = p[T[1]] - p[T[0]], v = p[T[2]] - p[T[0]], n = cross(u, v);
-          const point3 cc = p[T[0]] + (1.0 / (2 * dot(n, n))) * cross(dot(u, u) * v - dot(v, v) * u, n);
-          const double r = distance(cc, p[T[0]]) * (1 + 1e-6) + 1e-300;
+          const auto [cc, r] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]);
           point3 lo, hi;
           for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
           bool touched = false;
@@ -591,9 +591,7 @@ class state3 : public state<3> {
         const auto& T = tris[t];
         bool stale = false;
         if (any_fresh) {
-          const point3 u = p[T[1]] - p[T[0]], v = p[T[2]] - p[T[0]], n = cross(u, v);
-          const point3 cc = p[T[0]] + (1.0 / (2 * dot(n, n))) * cross(dot(u, u) * v - dot(v, v) * u, n);
-          const double r = distance(cc, p[T[0]]) * (1 + 1e-6) + 1e-300;
+          const auto [cc, r] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]);
           point3 lo, hi;
           for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
           fresh.visit(lo, hi, [&](vertex_id w) {
@@ -775,21 +773,17 @@ std::vector<std::pair<std::size_t, vertex_id>> check(const boundary<D>& b) {
     const auto& F = b.faces[f];
     point<D> c{};
     double r = 0;
-    if constexpr (D == 2) {
-      c = 0.5 * (p[F[0]] + p[F[1]]);
-      r = 0.5 * distance(p[F[0]], p[F[1]]);
-    } else {
-      const point3 u = p[F[1]] - p[F[0]], v = p[F[2]] - p[F[0]], n = cross(u, v);
-      c = p[F[0]] + (1.0 / (2 * dot(n, n))) * cross(dot(u, u) * v - dot(v, v) * u, n);
-      r = distance(c, p[F[0]]);
-    }
-    r = r * (1 + 1e-6) + 1e-300;
+    if constexpr (D == 2)
+      std::tie(c, r) = detail::diametral_bound(p[F[0]], p[F[1]]);
+    else
+      std::tie(c, r) = detail::equatorial_bound(p[F[0]], p[F[1]], p[F[2]]);
     point<D> lo, hi;
     for (std::size_t k = 0; k < D; ++k) lo[k] = c[k] - r, hi[k] = c[k] + r;
     ties.clear();
     vertex_id strict = no_vertex;
     grid.visit(lo, hi, [&](vertex_id y) {
       if (std::find(F.begin(), F.end(), y) != F.end()) return;
+      if (squared_distance(c, p[y]) > r * r) return;  // double prefilter, padded
       int s;
       if constexpr (D == 2)
         s = geometry::in_diametral(p[F[0]], p[F[1]], p[y]);

@@ -7,7 +7,6 @@
 #include <cstddef>
 #include <span>
 #include <stdexcept>
-#include <unordered_map>
 #include <vector>
 
 #include "gsse/topology/simplex.hpp"
@@ -43,8 +42,8 @@ class simplicial_complex {
   /// Builds neighbours and the vertex-to-cell index. Throws if a facet is shared by more than two
   /// cells (not a manifold complex).
   void finalize() {
-    build_neighbours();
     build_vertex_index();
+    build_neighbours();
     finalized_ = true;
   }
 
@@ -68,32 +67,49 @@ class simplicial_complex {
   void require_finalized() const {
     if (!finalized_) throw std::logic_error("gsse: incidence queried before finalize()");
   }
-  struct key_hash {
-    std::size_t operator()(const std::array<vertex_id, D>& k) const {
-      std::size_t h = 1469598103934665603ull;
-      for (auto v : k) h = (h ^ v) * 1099511628211ull;
-      return h;
-    }
-  };
+  /// Each facet is matched at its smallest vertex v, among the cells around v (vertex index):
+  /// sorting those few (other vertices, cell, facet) entries pairs the two cells of each facet.
+  /// Local and allocation-free, unlike a global facet hash.
   void build_neighbours() {
     nbrs_.assign(cells_.size(), {});
     for (auto& n : nbrs_) n.fill(no_cell);
-    std::unordered_map<std::array<vertex_id, D>, std::pair<cell_id, int>, key_hash> open;
-    open.reserve(cells_.size() * 2);
-    for (cell_id c = 0; c < cells_.size(); ++c) {
-      for (int i = 0; i <= static_cast<int>(D); ++i) {
-        std::array<vertex_id, D> k;
-        for (std::size_t j = 0; j < D; ++j)
-          k[j] = cells_[c][static_cast<std::size_t>(reference_simplex<D>::facet_vertices[i][j])];
-        std::sort(k.begin(), k.end());
-        auto [it, fresh] = open.try_emplace(k, c, i);
-        if (!fresh) {
-          auto [o, oi] = it->second;
-          if (o == no_cell) throw std::runtime_error("gsse: a facet is shared by more than two cells");
-          nbrs_[c][static_cast<std::size_t>(i)] = o;
-          nbrs_[o][static_cast<std::size_t>(oi)] = c;
-          it->second = {no_cell, -1};
+    struct entry {
+      std::array<vertex_id, D - 1> rest;  // the facet's other vertices, sorted
+      cell_id c;
+      int i;
+    };
+    std::vector<entry> around;
+    for (std::size_t v = 0; v + 1 < vstart_.size(); ++v) {
+      around.clear();
+      for (std::size_t k = vstart_[v]; k < vstart_[v + 1]; ++k) {
+        const cell_id c = vcells_[k];
+        for (int i = 0; i <= static_cast<int>(D); ++i) {
+          if (cells_[c][static_cast<std::size_t>(i)] == v) continue;  // facet i lacks v
+          entry e{{}, c, i};
+          std::size_t m = 0;
+          bool lowest = true;
+          for (std::size_t j = 0; j <= D; ++j) {
+            const vertex_id w = cells_[c][j];
+            if (static_cast<int>(j) == i || w == v) continue;
+            lowest = lowest && w > v;
+            e.rest[m++] = w;
+          }
+          if (!lowest) continue;  // matched at its smallest vertex
+          std::sort(e.rest.begin(), e.rest.end());
+          around.push_back(e);
         }
+      }
+      std::sort(around.begin(), around.end(), [](const entry& a, const entry& b) { return a.rest < b.rest; });
+      for (std::size_t k = 0; k + 1 < around.size();) {
+        if (around[k].rest != around[k + 1].rest) {
+          ++k;
+          continue;
+        }
+        if (k + 2 < around.size() && around[k + 2].rest == around[k].rest)
+          throw std::runtime_error("gsse: a facet is shared by more than two cells");
+        nbrs_[around[k].c][static_cast<std::size_t>(around[k].i)] = around[k + 1].c;
+        nbrs_[around[k + 1].c][static_cast<std::size_t>(around[k + 1].i)] = around[k].c;
+        k += 2;
       }
     }
   }
