@@ -85,7 +85,7 @@ int run(const gsse::plc<D>& p, const args& a) {
     else if (ends(".msh"))
       gsse::io::write_msh(d, out);
     else if (ends(".node"))
-      gsse::io::write_node_ele(d, out.substr(0, out.size() - 5));
+      gsse::io::write_node_ele(d, out.substr(0, out.size() - 5), a.threads);
     else
       throw std::runtime_error(out + ": unknown output format (use .vtu, .msh or .node)");
     r.times.push_back({"write", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <numeric>
 #include <set>
 #include <tuple>
 
@@ -303,7 +304,12 @@ struct facet_state {
   std::size_t boundary_size = 0;                                   // chain vertices when triangulated
   std::array<bool, 3> constant{};                                  // coordinate shared by all corners
   std::array<double, 3> constant_value{};
-  bool checked = false;  // triangles checked clean since they were made (see encroachers())
+  // encroachment bookkeeping (see encroachers()): whether `triangles` were all checked at the last
+  // check and which were clean then; after a new triangulation, the sorted corners of the old
+  // triangles that were clean
+  bool checked = false;
+  std::vector<char> was_clean;
+  std::vector<std::array<vertex_id, 3>> clean;
 };
 
 class state3 : public state<3> {
@@ -399,8 +405,17 @@ class state3 : public state<3> {
 
   void triangulate(std::uint32_t f) {
     auto& S = facets_[f];
-    S.triangles.clear();
+    S.clean.clear();
+    if (S.checked)
+      for (std::size_t t = 0; t < S.triangles.size(); ++t)
+        if (S.was_clean[t]) {
+          auto key = S.triangles[t];
+          std::sort(key.begin(), key.end());
+          S.clean.push_back(key);
+        }
+    std::sort(S.clean.begin(), S.clean.end());
     S.checked = false;
+    S.triangles.clear();
     S.boundary_size = boundary_size(f);
     const auto vs = facet_vertices(f);
     const auto grid = front::make_grid(out_.points, S.axis, vs);
@@ -414,13 +429,21 @@ class state3 : public state<3> {
           for (std::size_t i = ch.size() - 1; i > 0; --i) b.push_back({ch[i], ch[i - 1]});
       }
       try {
-        auto t = front::wrap_facet(out_.points, S.axis, grid, b,
-                                   plc_.source + ": facet " + std::to_string(f + 1));
+        // an axis-aligned facet's points share the dropped coordinate exactly (splits copy it)
+        auto t = front::wrap_facet(out_.points, S.axis, grid, b, plc_.source + ": facet " + std::to_string(f + 1),
+                                   nullptr, 0, S.constant[static_cast<std::size_t>(S.axis)]);
         S.triangles.insert(S.triangles.end(), t.begin(), t.end());
       } catch (const front::front_error& e) {
         throw conform_error(std::string(e.what()) + " (facet polygons overlap or self-intersect?)");
       }
     }
+  }
+
+  /// Triangulates the given facets, in parallel: each reads the shared points and chains and
+  /// writes only its own facet state.
+  void triangulate_all(const std::vector<std::uint32_t>& fs) {
+    for_each(execution::par(opt_.threads), fs, [&](std::uint32_t f) { triangulate(f); },
+             [&](std::uint32_t f) { return static_cast<double>(vertex_count(f)); });
   }
 
   /// The encroacher of subfacet abc (smallest id strictly inside its closed equatorial ball, or a
@@ -492,11 +515,13 @@ class state3 : public state<3> {
   }
 
   /// The triangle of facet f containing q (closed), or -1.
-  long locate(std::uint32_t f, const point3& q) const {
+  long locate(std::uint32_t f, const point3& q, std::size_t hint = 0) const {
     const auto& S = facets_[f];
     const auto& p = out_.points;
     const point2 pq = geometry::project(q, S.axis);
-    for (std::size_t t = 0; t < S.triangles.size(); ++t) {
+    const std::size_t n = S.triangles.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t t = (hint + k) % n;  // from the hint: a split point is usually in its triangle
       const auto& T = S.triangles[t];
       // double bounding-box prefilter (padded), exact test after
       bool out = false;
@@ -533,25 +558,37 @@ class state3 : public state<3> {
     return std::nullopt;
   }
 
-  /// Phase C: split encroached (or, with a size, too large) subfacets. Returns the number of splits.
   /// Encroacher of every subfacet at the start of a round (no_vertex: clean), computed in parallel
-  /// over facets. A facet not triangulated again since its last check was clean then (any split
-  /// changes its vertex set), so only the points inserted since can encroach it: its subfacets are
-  /// checked fully only if one of those lies in their closed ball.
+  /// over pieces of facets. A subfacet found clean at the last check (the same three corners,
+  /// whether or not its facet was triangulated again since) can be encroached only by a point
+  /// inserted since: it is checked fully only if one of those lies in its closed ball. A facet not
+  /// triangulated again since was wholly clean then: a split changes its vertex set.
   std::vector<std::vector<vertex_id>> encroachers() {
     const auto& p = out_.points;
     detail::spatial_hash<3> recent(p[0], grid_h_);
     for (vertex_id v = static_cast<vertex_id>(checked_upto_); v < p.size(); ++v) recent.insert(v, p[v]);
     std::vector<std::vector<vertex_id>> enc(facets_.size());
-    std::vector<std::uint32_t> ids(facets_.size());
-    for (std::uint32_t f = 0; f < ids.size(); ++f) ids[f] = f;
-    auto work = [&](std::uint32_t f) {
-      const auto& S = facets_[f];
+    // work in pieces of a facet, so that one large facet does not keep a thread busy alone
+    constexpr std::size_t piece = 512;
+    struct range {
+      std::uint32_t f;
+      std::size_t a, b;
+    };
+    std::vector<range> work;
+    for (std::uint32_t f = 0; f < facets_.size(); ++f) {
+      enc[f].assign(facets_[f].triangles.size(), no_vertex);
+      for (std::size_t a = 0; a < facets_[f].triangles.size(); a += piece)
+        work.push_back({f, a, std::min(facets_[f].triangles.size(), a + piece)});
+    }
+    auto check = [&](const range& w) {
+      const auto& S = facets_[w.f];
       std::vector<vertex_id> ties;
-      enc[f].assign(S.triangles.size(), no_vertex);
-      for (std::size_t t = 0; t < S.triangles.size(); ++t) {
+      for (std::size_t t = w.a; t < w.b; ++t) {
         const auto& T = S.triangles[t];
-        if (S.checked) {
+        auto key = T;
+        std::sort(key.begin(), key.end());
+        if (S.checked || std::binary_search(S.clean.begin(), S.clean.end(), key)) {
+          // clean at the last check: only a point inserted since can encroach it
           const auto [cc, r] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]);
           point3 lo, hi;
           for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
@@ -562,16 +599,22 @@ class state3 : public state<3> {
           });
           if (!touched) continue;
         }
-        enc[f][t] = facet_encroacher(T[0], T[1], T[2], ties);
+        enc[w.f][t] = facet_encroacher(T[0], T[1], T[2], ties);
       }
     };
-    for_each(execution::par(opt_.threads), ids, work,
-             [&](std::uint32_t f) { return static_cast<double>(facets_[f].triangles.size()); });
-    for (auto& S : facets_) S.checked = true;
+    for_each(execution::par(opt_.threads), work, check,
+             [&](const range& w) { return static_cast<double>(w.b - w.a); });
+    for (std::uint32_t f = 0; f < facets_.size(); ++f) {
+      auto& S = facets_[f];
+      S.checked = true;
+      S.was_clean.resize(S.triangles.size());
+      for (std::size_t t = 0; t < S.triangles.size(); ++t) S.was_clean[t] = enc[f][t] == no_vertex;
+    }
     checked_upto_ = p.size();
     return enc;
   }
 
+  /// Phase C: split encroached (or, with a size, too large) subfacets. Returns the number of splits.
   std::size_t conform_facets() {
     std::size_t splits = 0;
     const auto enc = encroachers();
@@ -589,6 +632,12 @@ class state3 : public state<3> {
       const auto tris = S.triangles;
       for (std::size_t t = 0; t < tris.size(); ++t) {
         const auto& T = tris[t];
+        const vertex_id y = enc[f][t];
+        // longer than the size, not merely by rounding: the facet lattice has edges of exactly
+        // the size, which rounding would otherwise split by the ten thousand
+        const bool too_big = opt_.size > 0 && std::max({distance(p[T[0]], p[T[1]]), distance(p[T[1]], p[T[2]]),
+                                                          distance(p[T[2]], p[T[0]])}) > opt_.size * (1 + 1e-9);
+        if (y == no_vertex && !too_big) continue;
         bool stale = false;
         if (any_fresh) {
           const auto [cc, r] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]);
@@ -598,19 +647,15 @@ class state3 : public state<3> {
             stale = stale || (squared_distance(cc, p[w]) <= r * r && geometry::in_equatorial(p[T[0]], p[T[1]], p[T[2]], p[w]) >= 0);
           });
         }
-        if (stale) continue;
         // not stale: no point inserted in this phase lies in its ball, so the encroacher found at
         // the start of the round stands
-        const vertex_id y = enc[f][t];
-        const bool too_big = opt_.size > 0 && std::max({distance(p[T[0]], p[T[1]]), distance(p[T[1]], p[T[2]]),
-                                                          distance(p[T[2]], p[T[0]])}) > opt_.size;
-        if (y == no_vertex && !too_big) continue;
+        if (stale) continue;
         std::vector<point3> elem{p[T[0]], p[T[1]], p[T[2]]};
         point3 q;
         if (y != no_vertex) {
           // a free vertex exactly inside the facet becomes a facet vertex
           if (out_.homes[y].kind == home::free && geometry::orient3d(p[T[0]], p[T[1]], p[T[2]], p[y]) == 0 &&
-              locate(f, p[y]) >= 0) {
+              locate(f, p[y], t) >= 0) {
             out_.homes[y] = {home::facet, f};
             S.interior.push_back(y);
             note(y);
@@ -637,7 +682,7 @@ class state3 : public state<3> {
           ++splits;
           continue;
         }
-        if (locate(f, q) < 0) q = (1.0 / 3) * (elem[0] + elem[1] + elem[2]);  // outside: centroid
+        if (locate(f, q, t) < 0) q = (1.0 / 3) * (elem[0] + elem[1] + elem[2]);  // outside: centroid
         for (std::size_t k = 0; k < 3; ++k)  // exact on axis-aligned facets
           if (S.constant[k]) q[k] = S.constant_value[k];
         const vertex_id v = add_point(q, {home::facet, f});
@@ -701,7 +746,9 @@ class state3 : public state<3> {
     presplit_edges();
     if (opt_.size > 0) {
       conform_segments();
-      for (std::uint32_t f = 0; f < facets_.size(); ++f) triangulate(f);
+      std::vector<std::uint32_t> all(facets_.size());
+      std::iota(all.begin(), all.end(), 0u);
+      triangulate_all(all);
       seed_facets();
     }
     std::vector<std::size_t> seen(facets_.size(), 0);
@@ -709,11 +756,11 @@ class state3 : public state<3> {
     for (;;) {
       ++out_.rounds;
       const std::size_t seg_splits = conform_segments();
+      std::vector<std::uint32_t> changed;  // only facets whose vertex set changed
       for (std::uint32_t f = 0; f < facets_.size(); ++f)
-        if (vertex_count(f) != seen[f]) {  // only facets whose vertex set changed
-          triangulate(f);
-          seen[f] = vertex_count(f);
-        }
+        if (vertex_count(f) != seen[f]) changed.push_back(f);
+      triangulate_all(changed);
+      for (auto f : changed) seen[f] = vertex_count(f);
       const std::size_t facet_splits = conform_facets();
       if (trace)
         std::fprintf(stderr, "conform round %zu: %zu subsegment splits, %zu subfacet splits, %zu points\n", out_.rounds,

@@ -91,8 +91,9 @@ std::vector<std::array<vertex_id, 3>> wrap_wall(std::span<const point2> pts, con
 }
 std::vector<std::array<vertex_id, 3>> wrap_facet(std::span<const point3> pts, int axis, const point_grid<2>& grid,
                                                  const std::vector<std::array<vertex_id, 2>>& boundary,
-                                                 const std::string& label, wrap_stats* stats, std::size_t max_cells) {
-  return run(facet_kernel{pts, axis}, grid, boundary, label, stats, max_cells);
+                                                 const std::string& label, wrap_stats* stats, std::size_t max_cells,
+                                                 bool coplanar) {
+  return run(facet_kernel{pts, axis, coplanar}, grid, boundary, label, stats, max_cells);
 }
 
 }  // namespace gsse::front

@@ -14,6 +14,7 @@
 #include "gsse/io/text_reader.hpp"
 #include "node_block.hpp"
 #include "number_format.hpp"
+#include "parallel_text.hpp"
 
 namespace gsse::io {
 namespace {
@@ -113,7 +114,7 @@ template domain<2> read_node_ele<2>(const std::string&);
 template domain<3> read_node_ele<3>(const std::string&);
 
 template <std::size_t D>
-void write_node_ele(const domain<D>& d, const std::string& path) {
+void write_node_ele(const domain<D>& d, const std::string& path, unsigned threads) {
   const std::string base = strip_mesh_extension(path);
   const auto& pts = d.points();
   detail::check_domain(d, base + ".ele");
@@ -127,38 +128,41 @@ void write_node_ele(const domain<D>& d, const std::string& path) {
   {
     auto& o = node.stream();
     o << "# written by gsse::io\n" << pts.size() << ' ' << D << " 0 0\n";
-    std::string line;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      line = std::to_string(i + 1);
+    detail::write_lines(o, pts.size(), threads, [&](std::size_t i, std::string& line) {
+      detail::append_int(line, static_cast<long long>(i + 1));
       for (double x : pts[i]) detail::append_real(line += ' ', x);
-      o << line << '\n';
-    }
+      line += '\n';
+    });
   }
   {
     auto& o = ele.stream();
+    std::vector<std::pair<const segment<D>*, std::size_t>> cells;  // (segment, first element id)
     std::size_t n = 0;
-    for (const auto& s : d.segments()) n += s.num_cells();
+    for (const auto& s : d.segments()) cells.push_back({&s, n}), n += s.num_cells();
     o << "# written by gsse::io; attribute = segment number\n" << n << ' ' << D + 1 << " 1\n";
-    std::size_t id = 0;
-    for (const auto& s : d.segments())
-      for (const auto& c : s.cell_data()) {
-        o << ++id;
-        for (auto v : c) o << ' ' << v + 1;
-        o << ' ' << s.number() << '\n';
-      }
+    for (const auto& [s, first] : cells) {
+      const auto data = s->cell_data();
+      detail::write_lines(o, data.size(), threads, [&, s = s, first = first](std::size_t i, std::string& line) {
+        detail::append_int(line, static_cast<long long>(first + i + 1));
+        for (auto v : data[i]) detail::append_int(line += ' ', static_cast<long long>(v) + 1);
+        detail::append_int(line += ' ', s->number());
+        line += '\n';
+      });
+    }
   }
   {
     auto& o = face.stream();
     o << "# written by gsse::io; oriented into the first segment, marker = first*" << m << " + second (0: outside)\n"
       << faces.size() << " 1\n";
-    std::size_t id = 0;
-    for (const auto& f : faces) {
-      o << ++id;
-      for (auto v : f.vertices) o << ' ' << v + 1;
+    detail::write_lines(o, faces.size(), threads, [&](std::size_t i, std::string& line) {
+      const auto& f = faces[i];
+      detail::append_int(line, static_cast<long long>(i + 1));
+      for (auto v : f.vertices) detail::append_int(line += ' ', static_cast<long long>(v) + 1);
       const int a = d.segments()[f.first].number();
       const int b = f.second < 0 ? 0 : d.segments()[static_cast<std::size_t>(f.second)].number();
-      o << ' ' << static_cast<long>(a) * m + b << '\n';
-    }
+      detail::append_int(line += ' ', static_cast<long long>(a) * m + b);
+      line += '\n';
+    });
   }
   segment_table t;
   for (const auto& s : d.segments()) {
@@ -171,7 +175,7 @@ void write_node_ele(const domain<D>& d, const std::string& path) {
   face.commit();
   write_sidecar(base + ".json", t);
 }
-template void write_node_ele<2>(const domain<2>&, const std::string&);
-template void write_node_ele<3>(const domain<3>&, const std::string&);
+template void write_node_ele<2>(const domain<2>&, const std::string&, unsigned);
+template void write_node_ele<3>(const domain<3>&, const std::string&, unsigned);
 
 }  // namespace gsse::io

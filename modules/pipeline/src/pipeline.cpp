@@ -350,7 +350,7 @@ domain<D> mesh_segments<D>::operator()(const conformer::boundary<D>& b, const co
     }
   }
   d.sync_slots();
-  for (auto& s : d.segments()) s.finalize();  // neighbours and vertex-to-cell incidence for users
+  for (auto& s : d.segments()) s.finalize(threads);  // neighbours and vertex-to-cell incidence for users
   return d;
 }
 

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <exception>
 #include <span>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "gsse/topology/simplex.hpp"
@@ -40,10 +42,11 @@ class simplicial_complex {
 
   bool finalized() const { return finalized_; }
   /// Builds neighbours and the vertex-to-cell index. Throws if a facet is shared by more than two
-  /// cells (not a manifold complex).
-  void finalize() {
+  /// cells (not a manifold complex). `threads` share the neighbour matching by vertex ranges; the
+  /// result is the same for any number.
+  void finalize(unsigned threads = 1) {
     build_vertex_index();
-    build_neighbours();
+    build_neighbours(std::max(1u, threads));
     finalized_ = true;
   }
 
@@ -70,16 +73,35 @@ class simplicial_complex {
   /// Each facet is matched at its smallest vertex v, among the cells around v (vertex index):
   /// sorting those few (other vertices, cell, facet) entries pairs the two cells of each facet.
   /// Local and allocation-free, unlike a global facet hash.
-  void build_neighbours() {
+  void build_neighbours(unsigned threads) {
     nbrs_.assign(cells_.size(), {});
     for (auto& n : nbrs_) n.fill(no_cell);
+    const std::size_t nv = vstart_.empty() ? 0 : vstart_.size() - 1;
+    if (threads <= 1 || nv < 4096) return match_facets(0, nv);
+    // each facet is matched at its smallest vertex, so vertex ranges write disjoint entries
+    std::vector<std::exception_ptr> errors(threads);
+    {
+      std::vector<std::jthread> pool;
+      for (unsigned t = 0; t < threads; ++t)
+        pool.emplace_back([&, t] {
+          try {
+            match_facets(nv * t / threads, nv * (t + 1) / threads);
+          } catch (...) {
+            errors[t] = std::current_exception();
+          }
+        });
+    }
+    for (auto& e : errors)
+      if (e) std::rethrow_exception(e);
+  }
+  void match_facets(std::size_t v0, std::size_t v1) {
     struct entry {
       std::array<vertex_id, D - 1> rest;  // the facet's other vertices, sorted
       cell_id c;
       int i;
     };
     std::vector<entry> around;
-    for (std::size_t v = 0; v + 1 < vstart_.size(); ++v) {
+    for (std::size_t v = v0; v < v1; ++v) {
       around.clear();
       for (std::size_t k = vstart_[v]; k < vstart_[v + 1]; ++k) {
         const cell_id c = vcells_[k];

@@ -43,10 +43,11 @@ std::vector<std::array<vertex_id, 3>> wrap_wall(std::span<const point2> pts, con
                                                 const std::string& label, std::size_t axis, double x0,
                                                 std::array<std::vector<std::array<vertex_id, 2>>, 2>& sides);
 /// Triangles of a planar facet of 3D points: edges with the facet on their left in the projection
-/// dropping `axis`; the grid must be built with the same axis.
+/// dropping `axis`; the grid must be built with the same axis. `coplanar`: the points are exactly
+/// coplanar (e.g. all share the dropped coordinate), which allows the faster exact search.
 std::vector<std::array<vertex_id, 3>> wrap_facet(std::span<const point3> pts, int axis, const point_grid<2>& grid,
                                                  const std::vector<std::array<vertex_id, 2>>& boundary,
                                                  const std::string& label, wrap_stats* stats = nullptr,
-                                                 std::size_t max_cells = 0);
+                                                 std::size_t max_cells = 0, bool coplanar = false);
 
 }  // namespace gsse::front

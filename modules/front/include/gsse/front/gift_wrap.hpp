@@ -350,7 +350,7 @@ class gift_wrapper {
     // in the cap just scanned, every vertex that can beat it exactly was seen: one exact pass over
     // those in its ball settles it (the perturbed order is strict, so a vertex that does not beat
     // the current best cannot beat a later one: their caps are nested).
-    if constexpr (K::strict_order) {
+    if (k_.strict()) {
       coord c;
       double r = 0;
       if (k_.ball(f, best, c, r) && covered(c, r, n, d, ct, Rt)) {
@@ -474,7 +474,7 @@ class gift_wrapper {
       // With a strict order (perturbed balls in 3D and 2D) one exact pass over the ball is final:
       // the new best's cap lies inside the old one, and y not beating the old best cannot beat
       // the new one. Slanted facets (rounded coplanarity) rescan.
-      if (!changed || K::strict_order) break;
+      if (!changed || k_.strict()) break;
       best_t = K::estimate(pr, k_.grid_coord(best));
     }
     return best;

@@ -3,6 +3,7 @@
 // y lies in the perturbed circumball of face+x) and the double constructions used only to bound
 // the search region. A kernel provides:
 //   dim, grid_dim, face (std::array<vertex_id, dim>)
+//   strict()            true if "beats" is a strict order (exact perturbed balls)
 //   side(f, y)          +1 if y lies on the inner (positive) side of oriented face f
 //   beats(f, x, y)      true if y is inside the perturbed circumball of f+x (side(f,x) > 0)
 //   ball(f, x, c, r)    centre and radius in grid coordinates of a ball containing that
@@ -38,11 +39,11 @@ inline double padded(double r, double rel, double edge) { return r * (1 + 4 * re
 /// Tetrahedra in 3D.
 struct volume_kernel {
   static constexpr std::size_t dim = 3, grid_dim = 3;
-  static constexpr bool strict_order = true;
   using face = std::array<vertex_id, 3>;
   using coord = std::array<double, 3>;
   std::span<const point3> p;
 
+  bool strict() const { return true; }
   int side(const face& f, vertex_id y) const { return geometry::orient3d(p[f[0]], p[f[1]], p[f[2]], p[y]); }
   bool beats(const face& f, vertex_id x, vertex_id y) const {
     return geometry::in_sphere_perturbed(p[f[0]], p[f[1]], p[f[2]], p[x], p[y]) > 0;
@@ -117,11 +118,11 @@ struct edge_probe {
 /// Triangles in 2D.
 struct plane_kernel {
   static constexpr std::size_t dim = 2, grid_dim = 2;
-  static constexpr bool strict_order = true;
   using face = std::array<vertex_id, 2>;
   using coord = std::array<double, 2>;
   std::span<const point2> p;
 
+  bool strict() const { return true; }
   int side(const face& f, vertex_id y) const { return geometry::orient2d(p[f[0]], p[f[1]], p[y]); }
   bool beats(const face& f, vertex_id x, vertex_id y) const {
     return geometry::in_circle_perturbed(p[f[0]], p[f[1]], p[x], p[y]) > 0;
@@ -152,11 +153,15 @@ struct plane_kernel {
 /// `axis`, circles tested exactly as equatorial balls (see in_coplanar_circle_perturbed).
 struct facet_kernel {
   static constexpr std::size_t dim = 2, grid_dim = 2;
-  static constexpr bool strict_order = false;
   using face = std::array<vertex_id, 2>;
   using coord = std::array<double, 2>;
   std::span<const point3> p;
   int axis = 2;
+  bool coplanar = false;  // the points are exactly coplanar (an axis-aligned facet)
+
+  /// "beats" is a strict order only for exactly coplanar points; a slanted facet's points are
+  /// coplanar up to rounding.
+  bool strict() const { return coplanar; }
 
   int side(const face& f, vertex_id y) const { return geometry::orient_projected(p[f[0]], p[f[1]], p[y], axis); }
   bool beats(const face& f, vertex_id x, vertex_id y) const {

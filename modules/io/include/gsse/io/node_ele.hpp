@@ -22,8 +22,9 @@ inline domain<2> read_triangle_mesh(const std::string& path) { return read_node_
 /// segments a and b (number a < b) is oriented into a (its vertices are a facet of a's cell) and
 /// has marker a*M + b; a boundary facet of a is oriented into a with marker a*M, where
 /// M = face_marker_base in BASE.json (100 when all numbers are below 100). All files are
-/// committed only after every one of them was written.
+/// committed only after every one of them was written. `threads` format the text in parallel; the
+/// bytes are the same for any number.
 template <std::size_t D>
-void write_node_ele(const domain<D>& d, const std::string& base);
+void write_node_ele(const domain<D>& d, const std::string& base, unsigned threads = 1);
 
 }  // namespace gsse::io
