@@ -11,11 +11,11 @@
 #include "balls.hpp"
 #include "encroachment.hpp"
 #include "gsse/front/front_mesher.hpp"
+#include "gsse/geometry/hash_grid.hpp"
 #include "gsse/front/gift_wrap.hpp"
 #include "gsse/rules/defaults.hpp"
 #include "gsse/rules/split_rule.hpp"
 #include "gsse/traversal/for_each.hpp"
-#include "spatial_hash.hpp"
 
 namespace gsse::conformer {
 namespace {
@@ -279,7 +279,7 @@ class state {
   options opt_;
   boundary<D> out_;
   double grid_h_;
-  detail::spatial_hash<D> grid_;
+  hash_grid<D> grid_;
   rules::rule_set own_rules_;
   const rules::rule_set* rules_;
   std::vector<plc_edge> edges_;
@@ -291,7 +291,7 @@ class state {
   std::map<std::string, std::size_t> trace_;
 
  public:
-  detail::spatial_hash<D>& grid() { return grid_; }
+  hash_grid<D>& grid() { return grid_; }
 };
 
 // ------------------------------------------------------------------------------------------ 3D
@@ -565,7 +565,7 @@ class state3 : public state<3> {
   /// triangulated again since was wholly clean then: a split changes its vertex set.
   std::vector<std::vector<vertex_id>> encroachers() {
     const auto& p = out_.points;
-    detail::spatial_hash<3> recent(p[0], grid_h_);
+    hash_grid<3> recent(p[0], grid_h_);
     for (vertex_id v = static_cast<vertex_id>(checked_upto_); v < p.size(); ++v) recent.insert(v, p[v]);
     std::vector<std::vector<vertex_id>> enc(facets_.size());
     // work in pieces of a facet, so that one large facet does not keep a thread busy alone
@@ -621,7 +621,7 @@ class state3 : public state<3> {
     const auto& p = out_.points;
     // points inserted in this phase, anywhere: a triangle whose circumball holds one is stale
     // until its facet is triangulated again next round
-    detail::spatial_hash<3> fresh(p[0], grid_h_);
+    hash_grid<3> fresh(p[0], grid_h_);
     bool any_fresh = false;
     auto note = [&](vertex_id v) {
       fresh.insert(v, p[v]);
@@ -719,7 +719,7 @@ class state3 : public state<3> {
         ulo = std::min(ulo, dot(d, u)), uhi = std::max(uhi, dot(d, u));
         vlo = std::min(vlo, dot(d, v)), vhi = std::max(vhi, dot(d, v));
       }
-      detail::spatial_hash<3> near(o, 0.5 * h);
+      hash_grid<3> near(o, 0.5 * h);
       for (vertex_id w : vs) near.insert(w, out_.points[w]);
       const double row = h * std::sqrt(3.0) / 2;
       for (long j = 0; vlo + row * (static_cast<double>(j) + 0.0271) < vhi; ++j)
@@ -813,7 +813,7 @@ template <std::size_t D>
 std::vector<std::pair<std::size_t, vertex_id>> check(const boundary<D>& b) {
   std::vector<std::pair<std::size_t, vertex_id>> bad;
   const auto& p = b.points;
-  detail::spatial_hash<D> grid(p[0], cell_size_for(p, 0));
+  hash_grid<D> grid(p[0], cell_size_for(p, 0));
   for (vertex_id v = 0; v < p.size(); ++v) grid.insert(v, p[v]);
   std::vector<vertex_id> ties;
   for (std::size_t f = 0; f < b.faces.size(); ++f) {

@@ -9,6 +9,7 @@
 
 #include "gsse/front/front_mesher.hpp"
 #include "gsse/front/gift_wrap.hpp"
+#include "gsse/geometry/hash_grid.hpp"
 #include "gsse/geometry/predicates.hpp"
 #include "gsse/rules/defaults.hpp"
 #include "gsse/topology/incidence.hpp"
@@ -165,57 +166,14 @@ bool inside_cell(const std::vector<point<D>>& p, const cell_t<D>& c, const point
   }
 }
 
-/// Hash of uniform cells holding ids of objects by their bounding boxes (coarse cells for point
-/// location, boundary faces for the keep-off distance of the lattice).
-template <std::size_t D>
-class box_buckets {
- public:
-  box_buckets(const point<D>& origin, double cell) : o_(origin), cell_(cell) {}
-  std::array<long, D> key(const point<D>& q) const {
-    std::array<long, D> k;
-    for (std::size_t a = 0; a < D; ++a) k[a] = static_cast<long>(std::floor((q[a] - o_[a]) / cell_));
-    return k;
-  }
-  /// Files `id` under every cell met by the bounding box of `ids` (points of `p`).
-  template <class Ids>
-  void insert(std::uint32_t id, const std::vector<point<D>>& p, const Ids& ids) {
-    point<D> lo = p[ids[0]], hi = lo;
-    for (auto v : ids)
-      for (std::size_t a = 0; a < D; ++a) lo[a] = std::min(lo[a], p[v][a]), hi[a] = std::max(hi[a], p[v][a]);
-    for_cells(key(lo), key(hi), [&](const std::array<long, D>& k) {
-      cells_[k].push_back(id);
-      return true;
-    });
-  }
-  /// Calls f(id) for the ids in the cells within `ring` cells of q's cell; stops and returns false
-  /// as soon as f does.
-  template <class F>
-  bool visit(const point<D>& q, long ring, F&& f) const {
-    auto a = key(q), b = a;
-    for (std::size_t k = 0; k < D; ++k) a[k] -= ring, b[k] += ring;
-    return for_cells(a, b, [&](const std::array<long, D>& k) {
-      if (auto it = cells_.find(k); it != cells_.end())
-        for (auto id : it->second)
-          if (!f(id)) return false;
-      return true;
-    });
-  }
-
- private:
-  template <class F>
-  static bool for_cells(const std::array<long, D>& a, const std::array<long, D>& b, F&& f) {
-    std::array<long, D> k = a;
-    for (;;) {
-      if (!f(k)) return false;
-      std::size_t i = 0;
-      while (i < D && ++k[i] > b[i]) k[i] = a[i], ++i;
-      if (i == D) return true;
-    }
-  }
-  point<D> o_;
-  double cell_;
-  std::map<std::array<long, D>, std::vector<std::uint32_t>> cells_;
-};
+/// Files id in `g` under every cell met by the bounding box of the points `ids` of `p`.
+template <std::size_t D, class Ids>
+void insert_bounds(hash_grid<D>& g, std::uint32_t id, const std::vector<point<D>>& p, const Ids& ids) {
+  point<D> lo = p[ids[0]], hi = lo;
+  for (auto v : ids)
+    for (std::size_t a = 0; a < D; ++a) lo[a] = std::min(lo[a], p[v][a]), hi[a] = std::max(hi[a], p[v][a]);
+  g.insert_box(id, lo, hi);
+}
 
 }  // namespace
 
@@ -241,10 +199,10 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
   // bucket coarse cells by bounding box
   const double ext = distance(lo, hi);
   const double cell = std::max(ext / std::pow(static_cast<double>(all.size() + 1), 1.0 / D), 1e-300);
-  box_buckets<D> buckets(lo, cell);
-  for (std::uint32_t c = 0; c < all.size(); ++c) buckets.insert(c, b.points, all[c]);
+  hash_grid<D> buckets(lo, cell);
+  for (std::uint32_t c = 0; c < all.size(); ++c) insert_bounds(buckets, c, b.points, all[c]);
   auto in_segment = [&](const point<D>& q) {
-    return !buckets.visit(q, 0, [&](std::uint32_t c) { return !inside_cell(b.points, all[c], q); });
+    return !buckets.visit_ring(q, 0, [&](std::uint32_t c) { return !inside_cell(b.points, all[c], q); });
   };
   std::vector<point<D>> out;
   if (h > 0 && lattice) {
@@ -252,8 +210,8 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
     // a facet's interior would be projected onto it, leaving a very short edge), through a hash
     // of the faces' bounding boxes; double distances only place points, they decide no topology
     const double keep = 0.5 * h;
-    box_buckets<D> near(lo, keep);
-    for (std::uint32_t f = 0; f < b.faces.size(); ++f) near.insert(f, b.points, b.faces[f]);
+    hash_grid<D> near(lo, keep);
+    for (std::uint32_t f = 0; f < b.faces.size(); ++f) insert_bounds(near, f, b.points, b.faces[f]);
     auto face_distance2 = [&](std::uint32_t f, const point<D>& q) {
       const auto& F = b.faces[f];
       if constexpr (D == 2) {
@@ -279,7 +237,7 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
       }
     };
     auto clear_of_boundary = [&](const point<D>& q) {
-      return near.visit(q, 1, [&](std::uint32_t f) { return face_distance2(f, q) >= keep * keep; });
+      return near.visit_ring(q, 1, [&](std::uint32_t f) { return face_distance2(f, q) >= keep * keep; });
     };
     // lattice: BCC in 3D (nearest-neighbour distance h), triangular in 2D; the origin is shifted
     // by odd fractions so lattice points rarely sit exactly on axis-aligned input planes
@@ -287,24 +245,31 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
     const double rowh = D == 3 ? a : h * std::sqrt(3.0) / 2;
     std::array<long, D> n;
     for (std::size_t k = 0; k < D; ++k) n[k] = static_cast<long>((hi[k] - lo[k]) / (k == 1 && D == 2 ? rowh : a)) + 2;
-    auto consider = [&](const point<D>& q) {
-      if (clear_of_boundary(q) && in_segment(q)) out.push_back(q);
-    };
-    if constexpr (D == 3) {
-      for (long i = 0; i < n[0]; ++i)
-        for (long j = 0; j < n[1]; ++j)
-          for (long k = 0; k < n[2]; ++k) {
+    // slabs of the lattice (by its last index) classified in parallel, kept in slab order
+    const long slabs = n[D - 1];
+    std::vector<std::vector<point<D>>> kept(static_cast<std::size_t>(slabs));
+    std::vector<long> ids(static_cast<std::size_t>(slabs));
+    std::iota(ids.begin(), ids.end(), 0l);
+    for_each(execution::par(co.threads), ids, [&](long s) {
+      auto& out_s = kept[static_cast<std::size_t>(s)];
+      auto consider = [&](const point<D>& q) {
+        if (clear_of_boundary(q) && in_segment(q)) out_s.push_back(q);
+      };
+      if constexpr (D == 3) {
+        for (long i = 0; i < n[0]; ++i)
+          for (long j = 0; j < n[1]; ++j) {
             const point3 q{lo[0] + a * (static_cast<double>(i) + 0.0137), lo[1] + a * (static_cast<double>(j) + 0.0271),
-                           lo[2] + a * (static_cast<double>(k) + 0.0419)};
+                           lo[2] + a * (static_cast<double>(s) + 0.0419)};
             consider(q);
             consider(q + point3{a / 2, a / 2, a / 2});
           }
-    } else {
-      for (long j = 0; j < n[1]; ++j)
+      } else {
         for (long i = 0; i < n[0]; ++i)
-          consider(point2{lo[0] + a * (static_cast<double>(i) + 0.0137 + 0.5 * static_cast<double>(j % 2)),
-                          lo[1] + rowh * (static_cast<double>(j) + 0.0271)});
-    }
+          consider(point2{lo[0] + a * (static_cast<double>(i) + 0.0137 + 0.5 * static_cast<double>(s % 2)),
+                          lo[1] + rowh * (static_cast<double>(s) + 0.0271)});
+      }
+    });
+    for (const auto& k : kept) out.insert(out.end(), k.begin(), k.end());
   }
   for (const auto& q : cloud) {
     if (in_segment(q))

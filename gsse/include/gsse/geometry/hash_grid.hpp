@@ -1,0 +1,146 @@
+#pragma once
+// Dynamic uniform grid of hashed cells holding ids: of points (by their cell) or of objects (by
+// every cell their bounding box meets). For sets that grow while they are searched (the
+// conformer's points) or whose extent would make a dense grid too large (faces kept off by half a
+// mesh size). Cells live in an open-addressing table (packed cell key -> bucket), probed once per
+// cell a scan meets; scans meet cells in a fixed order, so results never depend on hashing.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "gsse/geometry/point.hpp"
+
+namespace gsse {
+
+template <std::size_t D>
+class hash_grid {
+ public:
+  using cell = std::array<long, D>;
+
+  hash_grid(const point<D>& origin, double cell_size) : o_(origin), inv_(1.0 / cell_size) { rehash(64); }
+
+  cell cell_of(const point<D>& p) const {
+    cell c;
+    for (std::size_t k = 0; k < D; ++k) c[k] = static_cast<long>(std::clamp(std::floor((p[k] - o_[k]) * inv_), -1e9, 1e9));
+    return c;
+  }
+  /// Files id in the cell of p.
+  void insert(std::uint32_t id, const point<D>& p) { bucket(key(cell_of(p))).push_back(id); }
+  /// Files id in every cell the box [lo, hi] meets.
+  void insert_box(std::uint32_t id, const point<D>& lo, const point<D>& hi) {
+    for_cells(cell_of(lo), cell_of(hi), [&](const cell& c) {
+      bucket(key(c)).push_back(id);
+      return true;
+    });
+  }
+  /// Calls f(id) for the ids in the cells the box [lo, hi] meets (an id filed in several of them
+  /// comes several times; a box of more cells than are occupied scans all occupied cells). If f
+  /// returns bool, false stops the scan and visit returns false.
+  template <class F>
+  bool visit(const point<D>& lo, const point<D>& hi, F&& f) const {
+    return visit_cells(cell_of(lo), cell_of(hi), f);
+  }
+  /// The same for the cells within `ring` cells of q's cell.
+  template <class F>
+  bool visit_ring(const point<D>& q, long ring, F&& f) const {
+    cell a = cell_of(q), b = a;
+    for (std::size_t k = 0; k < D; ++k) a[k] -= ring, b[k] += ring;
+    return visit_cells(a, b, f);
+  }
+
+ private:
+  static constexpr std::uint64_t empty = ~std::uint64_t{0};
+
+  template <class F>
+  static bool call(F& f, std::uint32_t id) {
+    if constexpr (std::is_same_v<std::invoke_result_t<F&, std::uint32_t>, bool>)
+      return f(id);
+    else
+      return f(id), true;
+  }
+  template <class F>
+  bool visit_cells(const cell& a, const cell& b, F& f) const {
+    double count = 1;
+    for (std::size_t k = 0; k < D; ++k) count *= static_cast<double>(b[k] - a[k] + 1);
+    if (count > 4.0 * static_cast<double>(buckets_.size()) + 64) {
+      // a box of more cells than are occupied: scan every occupied cell, by key (a superset)
+      std::vector<std::pair<std::uint64_t, std::uint32_t>> order;
+      for (std::size_t i = 0; i < keys_.size(); ++i)
+        if (keys_[i] != empty) order.push_back({keys_[i], vals_[i]});
+      std::sort(order.begin(), order.end());
+      for (auto [k, v] : order)
+        for (auto id : buckets_[v])
+          if (!call(f, id)) return false;
+      return true;
+    }
+    return for_cells(a, b, [&](const cell& c) {
+      const std::uint64_t k = key(c);
+      const std::size_t i = slot(k);
+      if (keys_[i] == k)
+        for (auto id : buckets_[vals_[i]])
+          if (!call(f, id)) return false;
+      return true;
+    });
+  }
+  template <class F>
+  static bool for_cells(const cell& a, const cell& b, F&& f) {
+    cell c = a;
+    for (;;) {
+      if (!f(c)) return false;
+      std::size_t k = 0;
+      while (k < D && ++c[k] > b[k]) c[k] = a[k], ++k;
+      if (k == D) return true;
+    }
+  }
+  /// Cell coordinates packed in 21 bits each: distinct for |coordinate| < 2^20 (beyond, cells may
+  /// share a bucket, which only adds candidates), never equal to `empty`.
+  static std::uint64_t key(const cell& c) {
+    std::uint64_t h = 0;
+    for (std::size_t k = 0; k < D; ++k) h = (h << 21) | (static_cast<std::uint64_t>(c[k] + (1l << 20)) & 0x1FFFFF);
+    return h;
+  }
+  std::size_t slot(std::uint64_t k) const {
+    const std::uint64_t h = k * 0x9E3779B97F4A7C15ull;
+    for (std::size_t i = (h ^ (h >> 31)) & mask_;; i = (i + 1) & mask_)
+      if (keys_[i] == k || keys_[i] == empty) return i;
+  }
+  std::vector<std::uint32_t>& bucket(std::uint64_t k) {
+    std::size_t i = slot(k);
+    if (keys_[i] == empty) {
+      if (2 * (buckets_.size() + 1) > keys_.size()) {
+        rehash(2 * keys_.size());
+        i = slot(k);
+      }
+      keys_[i] = k;
+      vals_[i] = static_cast<std::uint32_t>(buckets_.size());
+      buckets_.emplace_back();
+    }
+    return buckets_[vals_[i]];
+  }
+  void rehash(std::size_t n) {
+    std::vector<std::uint64_t> old_keys = std::move(keys_);
+    std::vector<std::uint32_t> old_vals = std::move(vals_);
+    keys_.assign(n, empty);
+    vals_.assign(n, 0);
+    mask_ = n - 1;
+    for (std::size_t i = 0; i < old_keys.size(); ++i)
+      if (old_keys[i] != empty) {
+        const std::size_t j = slot(old_keys[i]);
+        keys_[j] = old_keys[i];
+        vals_[j] = old_vals[i];
+      }
+  }
+
+  point<D> o_;
+  double inv_;
+  std::vector<std::uint64_t> keys_;
+  std::vector<std::uint32_t> vals_;
+  std::size_t mask_ = 0;
+  std::vector<std::vector<std::uint32_t>> buckets_;
+};
+
+}  // namespace gsse
