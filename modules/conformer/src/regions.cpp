@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "gsse/geometry/predicates.hpp"
+#include "gsse/traversal/for_each.hpp"
 
 namespace gsse::conformer {
 namespace {
@@ -153,62 +154,96 @@ long first_side(const boundary<D>& b, const point<D>& o, const point<D>& base, l
 }
 
 template <std::size_t D>
-labelling label_impl(const boundary<D>& b, const plc<D>& p) {
+labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
   const auto& pts = b.points;
   const std::size_t F = b.faces.size();
   union_find shells(2 * F);
   // gather faces around each (D-2)-simplex: edges in 3D, vertices in 2D
   if constexpr (D == 3) {
-    std::map<std::pair<vertex_id, vertex_id>, std::vector<std::uint32_t>> around;
+    // faces around each edge: (u, v, face) sorted, so each edge's faces are one run
+    struct edge_face {
+      vertex_id u, v;
+      std::uint32_t f;
+      auto operator<=>(const edge_face&) const = default;
+    };
+    std::vector<edge_face> ef;
+    ef.reserve(3 * F);
     for (std::uint32_t f = 0; f < F; ++f)
       for (int k = 0; k < 3; ++k) {
-        auto u = b.faces[f][static_cast<std::size_t>(k)], v = b.faces[f][static_cast<std::size_t>((k + 1) % 3)];
-        around[std::minmax(u, v)].push_back(f);
+        const auto [u, v] = std::minmax(b.faces[f][static_cast<std::size_t>(k)], b.faces[f][static_cast<std::size_t>((k + 1) % 3)]);
+        ef.push_back({u, v, f});
       }
-    for (auto& [e, fs] : around) {
-      const vertex_id u = e.first, v = e.second;
-      auto third = [&](std::uint32_t f) {
-        for (auto w : b.faces[f])
-          if (w != u && w != v) return w;
-        return u;
-      };
-      if (fs.size() == 1)
-        throw conform_error(p.source + ": the boundary is not closed: edge (" + std::to_string(u + 1) + ", " +
-                            std::to_string(v + 1) + ") bounds only one face");
-      const vertex_id w0 = third(fs[0]);
-      const int axis = geometry::dominant_axis(pts[u], pts[v], pts[w0]);
-      const int ref = geometry::orient_projected(pts[u], pts[v], pts[w0], axis);
-      auto cls = [&](std::uint32_t f) {
-        const vertex_id w = third(f);
-        const int o = geometry::orient3d(pts[u], pts[v], pts[w0], pts[w]);
-        if (o > 0) return 1;
-        if (o < 0) return 3;
-        return geometry::orient_projected(pts[u], pts[v], pts[w], axis) == ref ? 0 : 2;
-      };
-      std::sort(fs.begin(), fs.end(), [&](std::uint32_t a, std::uint32_t c) {
-        const int ca = cls(a), cc = cls(c);
-        if (ca != cc) return ca < cc;
-        if (a == c) return false;
-        return geometry::orient3d(pts[u], pts[v], pts[third(a)], pts[third(c)]) > 0;
-      });
-      for (std::size_t i = 0; i < fs.size(); ++i) {
-        const std::uint32_t a = fs[i], c = fs[(i + 1) % fs.size()];
-        const bool same_half_plane =
-            i + 1 < fs.size() && cls(a) == cls(c) &&
-            (cls(a) == 0 || cls(a) == 2 || geometry::orient3d(pts[u], pts[v], pts[third(a)], pts[third(c)]) == 0);
-        if (same_half_plane)
-          throw conform_error(p.source + ": boundary faces overlap at edge (" + std::to_string(u + 1) + ", " +
-                              std::to_string(v + 1) + ") (facets " + std::to_string(b.face_source[a] + 1) + " and " +
-                              std::to_string(b.face_source[c] + 1) + ")");
-        // + side of face (u,v,w) in this vertex order faces counter-clockwise around u->v
-        auto ccw_side = [&](std::uint32_t f) {
-          const auto& T = b.faces[f];
-          bool forward = false;
-          for (int k = 0; k < 3; ++k) forward |= T[static_cast<std::size_t>(k)] == u && T[static_cast<std::size_t>((k + 1) % 3)] == v;
-          return 2 * static_cast<std::size_t>(f) + (forward ? 0 : 1);
+    std::sort(ef.begin(), ef.end());
+    std::vector<std::size_t> runs;  // starts of the runs, and the end
+    for (std::size_t i = 0; i < ef.size(); ++i)
+      if (i == 0 || ef[i].u != ef[i - 1].u || ef[i].v != ef[i - 1].v) runs.push_back(i);
+    runs.push_back(ef.size());
+    // each run in parallel pieces: the faces sorted around the edge give the side pairs to unite
+    // (in run order, so the shells do not depend on the threads) and the first error, if any
+    constexpr std::size_t piece = 4096;
+    const std::size_t nruns = runs.size() - 1, npieces = (nruns + piece - 1) / piece;
+    std::vector<std::vector<std::pair<std::size_t, std::size_t>>> unite(npieces);
+    std::vector<std::string> error(npieces);
+    std::vector<std::size_t> pieces(npieces);
+    std::iota(pieces.begin(), pieces.end(), std::size_t{0});
+    for_each(execution::par(threads), pieces, [&](std::size_t k) {
+      std::vector<std::uint32_t> fs;
+      for (std::size_t run = k * piece; run < std::min(nruns, (k + 1) * piece) && error[k].empty(); ++run) {
+        const vertex_id u = ef[runs[run]].u, v = ef[runs[run]].v;
+        fs.clear();
+        for (std::size_t i = runs[run]; i < runs[run + 1]; ++i) fs.push_back(ef[i].f);
+        auto third = [&](std::uint32_t f) {
+          for (auto w : b.faces[f])
+            if (w != u && w != v) return w;
+          return u;
         };
-        shells.unite(ccw_side(a), ccw_side(c) ^ 1u);
+        if (fs.size() == 1) {
+          error[k] = p.source + ": the boundary is not closed: edge (" + std::to_string(u + 1) + ", " +
+                     std::to_string(v + 1) + ") bounds only one face";
+          break;
+        }
+        const vertex_id w0 = third(fs[0]);
+        const int axis = geometry::dominant_axis(pts[u], pts[v], pts[w0]);
+        const int ref = geometry::orient_projected(pts[u], pts[v], pts[w0], axis);
+        auto cls = [&](std::uint32_t f) {
+          const vertex_id w = third(f);
+          const int o = geometry::orient3d(pts[u], pts[v], pts[w0], pts[w]);
+          if (o > 0) return 1;
+          if (o < 0) return 3;
+          return geometry::orient_projected(pts[u], pts[v], pts[w], axis) == ref ? 0 : 2;
+        };
+        std::sort(fs.begin(), fs.end(), [&](std::uint32_t a, std::uint32_t c) {
+          const int ca = cls(a), cc = cls(c);
+          if (ca != cc) return ca < cc;
+          if (a == c) return false;
+          return geometry::orient3d(pts[u], pts[v], pts[third(a)], pts[third(c)]) > 0;
+        });
+        for (std::size_t i = 0; i < fs.size(); ++i) {
+          const std::uint32_t a = fs[i], c = fs[(i + 1) % fs.size()];
+          const bool same_half_plane =
+              i + 1 < fs.size() && cls(a) == cls(c) &&
+              (cls(a) == 0 || cls(a) == 2 || geometry::orient3d(pts[u], pts[v], pts[third(a)], pts[third(c)]) == 0);
+          if (same_half_plane) {
+            error[k] = p.source + ": boundary faces overlap at edge (" + std::to_string(u + 1) + ", " +
+                       std::to_string(v + 1) + ") (facets " + std::to_string(b.face_source[a] + 1) + " and " +
+                       std::to_string(b.face_source[c] + 1) + ")";
+            break;
+          }
+          // + side of face (u,v,w) in this vertex order faces counter-clockwise around u->v
+          auto ccw_side = [&](std::uint32_t f) {
+            const auto& T = b.faces[f];
+            bool forward = false;
+            for (int j = 0; j < 3; ++j)
+              forward |= T[static_cast<std::size_t>(j)] == u && T[static_cast<std::size_t>((j + 1) % 3)] == v;
+            return 2 * static_cast<std::size_t>(f) + (forward ? 0 : 1);
+          };
+          unite[k].push_back({ccw_side(a), ccw_side(c) ^ 1u});
+        }
       }
+    });
+    for (std::size_t k = 0; k < npieces; ++k) {
+      if (!error[k].empty()) throw conform_error(error[k]);
+      for (auto [x, y] : unite[k]) shells.unite(x, y);
     }
   } else {
     std::map<vertex_id, std::vector<std::uint32_t>> around;
@@ -250,17 +285,24 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p) {
   union_find cells(2 * F + 1);
   const std::size_t unbounded = 2 * F;
   std::vector<char> done(2 * F, 0);
+  std::vector<std::size_t> probes;  // the first side of each shell
   for (std::size_t s = 0; s < 2 * F; ++s) {
     const std::size_t root = shells.find(s);
-    if (done[root]) continue;
-    done[root] = 1;
-    const std::size_t f = s / 2;
+    if (!done[root]) done[root] = 1, probes.push_back(s);
+  }
+  // each probe casts rays through every face: in parallel, united in shell order
+  std::vector<long> hits(probes.size());
+  std::vector<std::size_t> order(probes.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  for_each(execution::par(threads), order, [&](std::size_t i) {
+    const std::size_t s = probes[i], f = s / 2;
     point<D> n = face_normal(b, f);
     if (s % 2) n = -1.0 * n;
-    const long hit = first_side(b, face_centre(b, f), (1.0 / std::sqrt(dot(n, n))) * n, static_cast<long>(f), len,
-                                p.source + ": probe of face " + std::to_string(f + 1));
-    cells.unite(root, hit < 0 ? unbounded : shells.find(static_cast<std::size_t>(hit)));
-  }
+    hits[i] = first_side(b, face_centre(b, f), (1.0 / std::sqrt(dot(n, n))) * n, static_cast<long>(f), len,
+                         p.source + ": probe of face " + std::to_string(f + 1));
+  });
+  for (std::size_t i = 0; i < probes.size(); ++i)
+    cells.unite(shells.find(probes[i]), hits[i] < 0 ? unbounded : shells.find(static_cast<std::size_t>(hits[i])));
   // region and hole points
   labelling out;
   std::map<std::size_t, int> cell_region;  // cell root -> region index, or exterior for holes
@@ -327,8 +369,8 @@ std::vector<int> locate_impl(const boundary<D>& b, const labelling& l, const std
 
 }  // namespace
 
-labelling label(const boundary<2>& b, const plc<2>& p) { return label_impl(b, p); }
-labelling label(const boundary<3>& b, const plc<3>& p) { return label_impl(b, p); }
+labelling label(const boundary<2>& b, const plc<2>& p, unsigned threads) { return label_impl(b, p, threads); }
+labelling label(const boundary<3>& b, const plc<3>& p, unsigned threads) { return label_impl(b, p, threads); }
 std::vector<int> locate(const boundary<2>& b, const labelling& l, const std::vector<point2>& q) {
   return locate_impl(b, l, q);
 }

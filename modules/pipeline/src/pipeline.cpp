@@ -189,7 +189,7 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
   conformer::options unsized = co;
   unsized.size = 0;
   auto b = conformer::conform(p, {}, unsized);
-  const auto l = conformer::label(b, p);
+  const auto l = conformer::label(b, p, co.threads);
   const auto coarse = wrap_all(b.points, b, l, 1);
   std::vector<cell_t<D>> all;
   for (const auto& cs : coarse) all.insert(all.end(), cs.begin(), cs.end());
@@ -456,7 +456,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   const auto b = conform<D>{}(p, volume, co);
   r.steiner = b.steiner;
   lap("conform");
-  const auto l = conformer::label(b, p);
+  const auto l = conformer::label(b, p, o.threads);
   lap("label");
   rules::rule_set defaults;
   front::creation_options fo;

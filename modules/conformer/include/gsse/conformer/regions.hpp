@@ -32,9 +32,10 @@ struct labelling {
 /// Labels the faces of b using the PLC's region and hole points. Throws conform_error for a
 /// non-closed boundary, overlapping faces, a region point on the boundary or outside the domain,
 /// a bounded region without a region point (when some region points are given), or two
-/// different region numbers in one region.
-labelling label(const boundary<2>& b, const plc<2>& p);
-labelling label(const boundary<3>& b, const plc<3>& p);
+/// different region numbers in one region. `threads` share the work; the result (and the error,
+/// if any) is the same for any number.
+labelling label(const boundary<2>& b, const plc<2>& p, unsigned threads = 1);
+labelling label(const boundary<3>& b, const plc<3>& p, unsigned threads = 1);
 
 /// Region index of each query point (exterior if outside every segment or in a hole), for
 /// classifying volume points; exact ray casting against the labelled faces.
