@@ -1,6 +1,10 @@
 #include "gsse/pipeline/pipeline.hpp"
 
 #include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <thread>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -40,9 +44,10 @@ inline std::string region_label(const conformer::labelling& l, std::size_t r) {
   return "segment " + std::to_string(l.regions[r].number) + " '" + l.regions[r].name + "'";
 }
 
-/// How often a region is halved before meshing (DeWall walls): by its share of the domain's
-/// volume, so a dominant region (the substrate) keeps both threads busy. Depends on the input
-/// only, never on the thread count, so the cell order, hence the output, is the same for any N.
+/// How often a region is halved before meshing (DeWall walls): until its pieces hold about an
+/// eighth of the domain's volume or less, so that a dominant region (the substrate) keeps every
+/// thread busy. Depends on the input only, never on the thread count, so the cell order, hence
+/// the output, is the same for any N.
 template <std::size_t D>
 std::vector<int> split_depths(const std::vector<point<D>>& pts, const std::vector<std::vector<std::array<vertex_id, D>>>& bnd) {
   std::vector<double> vol(bnd.size(), 0);
@@ -59,13 +64,16 @@ std::vector<int> split_depths(const std::vector<point<D>>& pts, const std::vecto
   }
   std::vector<int> depth(bnd.size(), 0);
   if (pts.size() < 20000 || !(total > 0)) return depth;  // small meshes: not worth a wall
-  for (std::size_t r = 0; r < bnd.size(); ++r) depth[r] = vol[r] > 0.5 * total ? 2 : vol[r] > 0.25 * total ? 1 : 0;
+  for (std::size_t r = 0; r < bnd.size(); ++r)
+    while (depth[r] < 4 && vol[r] > total / 8 * static_cast<double>(1 << depth[r])) ++depth[r];
   return depth;
 }
 
 /// Cells of every region, meshed in parallel with the points `pts` (b.points, possibly extended).
 /// Large regions are first split by walls across the longest side of their bounding box; the
-/// pieces are then meshed as regions of their own.
+/// pieces are then meshed as regions of their own. Pieces are tasks taken by free threads, largest
+/// first (walls before all, since they make the next tasks); each region's cells are concatenated
+/// by level of the split tree, then by position within it, whatever the threads did.
 template <std::size_t D>
 std::vector<std::vector<cell_t<D>>> wrap_all(const std::vector<point<D>>& pts, const conformer::boundary<D>& b,
                                              const conformer::labelling& l, unsigned threads) {
@@ -77,44 +85,76 @@ std::vector<std::vector<cell_t<D>>> wrap_all(const std::vector<point<D>>& pts, c
   struct piece {
     std::size_t region;
     std::vector<face> front;
-    int depth;
+    int depth;                // walls still to build above the leaves
+    int level;                // in the split tree
+    std::uint64_t index;      // position within the level (binary path: side 0 -> 2i, side 1 -> 2i+1)
   };
-  std::vector<piece> pieces;
-  for (std::size_t r = 0; r < l.regions.size(); ++r) pieces.push_back({r, std::move(bnd[r]), depth[r]});
-  std::vector<std::vector<cell_t<D>>> cells(l.regions.size());
-  while (!pieces.empty()) {
-    std::vector<std::vector<cell_t<D>>> out(pieces.size());
-    std::vector<std::array<std::vector<face>, 2>> sides(pieces.size());
-    std::vector<std::size_t> ids(pieces.size());
-    std::iota(ids.begin(), ids.end(), 0);
-    auto work = [&](std::size_t i) {
-      const auto& pc = pieces[i];
-      if (pc.depth == 0) {
-        out[i] = front::wrap(std::span<const point<D>>(pts), grid, pc.front, region_label(l, pc.region));
-        return;
+  struct result {
+    int level;
+    std::uint64_t index;
+    std::vector<cell_t<D>> cells;
+  };
+  std::vector<piece> todo;
+  for (std::size_t r = 0; r < l.regions.size(); ++r) todo.push_back({r, std::move(bnd[r]), depth[r], 0, 0});
+  std::vector<std::vector<result>> done(l.regions.size());
+  std::mutex m;
+  std::condition_variable cv;
+  std::size_t busy = 0;
+  std::exception_ptr error;
+  auto process = [&](piece& pc, std::array<std::vector<face>, 2>& sides) {
+    if (pc.depth == 0) return front::wrap(std::span<const point<D>>(pts), grid, pc.front, region_label(l, pc.region));
+    point<D> lo = pts[pc.front[0][0]], hi = lo;
+    for (const auto& f : pc.front)
+      for (auto v : f)
+        for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], pts[v][k]), hi[k] = std::max(hi[k], pts[v][k]);
+    std::size_t axis = 0;
+    for (std::size_t k = 1; k < D; ++k)
+      if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
+    return front::wrap_wall(std::span<const point<D>>(pts), grid, pc.front, region_label(l, pc.region), axis,
+                            0.5 * (lo[axis] + hi[axis]), sides);
+  };
+  auto worker = [&] {
+    std::unique_lock lock(m);
+    for (;;) {
+      cv.wait(lock, [&] { return !todo.empty() || busy == 0 || error; });
+      if (todo.empty() || error) break;  // nothing left, or nothing can come
+      // walls first (they make work), then the largest front
+      auto it = std::max_element(todo.begin(), todo.end(), [](const piece& x, const piece& y) {
+        return std::pair(x.depth > 0, x.front.size()) < std::pair(y.depth > 0, y.front.size());
+      });
+      piece pc = std::move(*it);
+      todo.erase(it);
+      ++busy;
+      lock.unlock();
+      std::array<std::vector<face>, 2> sides;
+      std::vector<cell_t<D>> cells;
+      std::exception_ptr e;
+      try {
+        cells = process(pc, sides);
+      } catch (...) {
+        e = std::current_exception();
       }
-      point<D> lo = pts[pc.front[0][0]], hi = lo;
-      for (const auto& f : pc.front)
-        for (auto v : f)
-          for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], pts[v][k]), hi[k] = std::max(hi[k], pts[v][k]);
-      std::size_t axis = 0;
-      for (std::size_t k = 1; k < D; ++k)
-        if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
-      out[i] = front::wrap_wall(std::span<const point<D>>(pts), grid, pc.front, region_label(l, pc.region), axis,
-                                0.5 * (lo[axis] + hi[axis]), sides[i]);
-    };
-    // cost estimate: front size (volume work is unknown before meshing)
-    for_each(execution::par(threads), ids, work, [&](std::size_t i) {
-      return static_cast<double>(pieces[i].front.size()) * (pieces[i].depth == 0 ? 1.0 : 0.2);
-    });
-    std::vector<piece> next;
-    for (std::size_t i = 0; i < pieces.size(); ++i) {
-      auto& c = cells[pieces[i].region];
-      c.insert(c.end(), out[i].begin(), out[i].end());
-      for (auto& s : sides[i])
-        if (!s.empty()) next.push_back({pieces[i].region, std::move(s), pieces[i].depth - 1});
+      lock.lock();
+      --busy;
+      if (e && !error) error = e;
+      done[pc.region].push_back({pc.level, pc.index, std::move(cells)});
+      for (std::size_t k = 0; k < 2; ++k)
+        if (!sides[k].empty())
+          todo.push_back({pc.region, std::move(sides[k]), pc.depth - 1, pc.level + 1, 2 * pc.index + k});
+      cv.notify_all();
     }
-    pieces = std::move(next);
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (unsigned t = 1; t < std::max(1u, threads); ++t) pool.emplace_back(worker);
+    worker();
+  }
+  if (error) std::rethrow_exception(error);
+  std::vector<std::vector<cell_t<D>>> cells(l.regions.size());
+  for (std::size_t r = 0; r < done.size(); ++r) {
+    auto& rs = done[r];
+    std::sort(rs.begin(), rs.end(), [](const result& x, const result& y) { return std::pair(x.level, x.index) < std::pair(y.level, y.index); });
+    for (auto& x : rs) cells[r].insert(cells[r].end(), x.cells.begin(), x.cells.end());
   }
   return cells;
 }
