@@ -1,5 +1,7 @@
 // Front mesher throughput against CGAL's Delaunay_triangulation_3 on the same points.
-// usage: front_bench N [gsse|cgal|both]   (run one method per process for a clean peak-memory figure)
+// usage: front_bench N [gsse|gsse2|cgal|both]   (one method per process for a clean peak-memory figure)
+// gsse: one thread; gsse2: two threads, the cube halved by a DeWall wall (x = 0.5) whose two
+// sides are meshed concurrently, as the pipeline splits large segments.
 // Points: 8 cube corners + N uniform points in the unit cube (seed 1). Prints one JSON line.
 #include <sys/resource.h>
 
@@ -10,6 +12,7 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <thread>
 
 #include "gsse/front/front_mesher.hpp"
 #include "gsse/front/gift_wrap.hpp"
@@ -42,7 +45,7 @@ int main(int argc, char** argv) {
   for (std::size_t i = 0; i < n; ++i) p.push_back({u(rng), u(rng), u(rng)});
   const double base_mb = peak_mb();
   std::printf("{\"points\": %zu", p.size());
-  if (which == "gsse" || which == "both") {
+  if (which == "gsse" || which == "gsse2" || which == "both") {
     // the cube's boundary: each face split along its perturbed-Delaunay diagonal
     std::vector<std::array<vertex_id, 3>> boundary;
     const point3 centre{0.5, 0.5, 0.5};
@@ -68,12 +71,24 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     const auto grid = front::make_grid(p);
     front::wrap_stats st;
-    const auto cells = front::wrap(p, grid, boundary, "cube", &st);
+    std::vector<std::array<vertex_id, 4>> cells;
+    if (which == "gsse2") {
+      std::array<std::vector<std::array<vertex_id, 3>>, 2> sides;
+      cells = front::wrap_wall(p, grid, boundary, "cube", 0, 0.5, sides);
+      std::array<std::vector<std::array<vertex_id, 4>>, 2> half;
+      {
+        std::jthread other([&] { half[1] = front::wrap(p, grid, sides[1], "cube side 1"); });
+        half[0] = front::wrap(p, grid, sides[0], "cube side 0");
+      }
+      for (const auto& h : half) cells.insert(cells.end(), h.begin(), h.end());
+    } else {
+      cells = front::wrap(p, grid, boundary, "cube", &st);
+    }
     const double s = seconds_since(t0);
-    std::printf(", \"gsse\": {\"tets\": %zu, \"seconds\": %.3f, \"tets_per_s\": %.0f, \"peak_mb\": %.1f, "
+    std::printf(", \"%s\": {\"tets\": %zu, \"seconds\": %.3f, \"tets_per_s\": %.0f, \"peak_mb\": %.1f, "
                 "\"bytes_per_tet\": %.0f, \"insphere_per_tet\": %.1f, \"orient_per_tet\": %.1f, "
                 "\"visits_per_tet\": %.1f, \"max_front\": %zu}",
-                cells.size(), s, static_cast<double>(cells.size()) / s, peak_mb(),
+                which == "gsse2" ? "gsse2" : "gsse", cells.size(), s, static_cast<double>(cells.size()) / s, peak_mb(),
                 (peak_mb() - base_mb) * 1048576.0 / static_cast<double>(cells.size()),
                 static_cast<double>(st.candidate_tests) / static_cast<double>(cells.size()),
                 static_cast<double>(st.side_tests) / static_cast<double>(cells.size()), static_cast<double>(st.visits) / static_cast<double>(cells.size()), st.max_front);

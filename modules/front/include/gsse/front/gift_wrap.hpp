@@ -103,6 +103,7 @@ class gift_wrapper {
       while (!queue.empty()) {
         const face f = queue.front();
         queue.pop_front();
+        if (queue.size() > 4) table.prefetch(queue[4]);  // its probe then hits the cache
         if (auto* at = table.find(f)) {  // else closed since it was pushed
           const vertex_id x = apex(f, label);  // leaves the table alone: `at` stays valid
           add_cell(table, cells, at, f, x, label, [&](const face& r) { queue.push_back(r); });
