@@ -7,6 +7,7 @@
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
+#include <thread>
 #include <vector>
 
 #include "gsse/container/domain.hpp"
@@ -49,7 +50,7 @@ struct outer_facet {
 /// Every facet on the boundary of a segment, once: boundary facets of the domain, and interface
 /// facets oriented into the segment of lower number. Deterministic order (segments, cells, facets).
 template <std::size_t D>
-std::vector<outer_facet<D>> outer_facets(const domain<D>& d, const std::string& file) {
+std::vector<outer_facet<D>> outer_facets(const domain<D>& d, const std::string& file, unsigned threads = 1) {
   struct use {
     std::size_t seg, cell;
     int index;
@@ -65,37 +66,52 @@ std::vector<outer_facet<D>> outer_facets(const domain<D>& d, const std::string& 
   const auto& segs = d.segments();
   if (std::all_of(segs.begin(), segs.end(), [](const auto& s) { return s.finalized(); })) {
     // fast path: a finalized segment knows its boundary facets (those without a neighbour); only
-    // they are matched across segments. Same facets, same order as the general path below.
-    struct sides {
-      std::size_t a, b;  // segments holding the facet (a == b: on the domain boundary)
-      int count;
+    // they are matched across segments, by sorting. Same facets, same order as the general path.
+    struct candidate {
+      std::array<vertex_id, D> f;  // oriented into segment k
+      std::size_t k;
     };
-    std::unordered_map<std::array<vertex_id, D>, sides, key_hash> map;
-    auto each_boundary_facet = [&](auto&& f) {
-      for (std::size_t k = 0; k < segs.size(); ++k) {
+    std::vector<std::vector<candidate>> per(segs.size());  // each segment's, in cell order
+    {
+      auto collect = [&](std::size_t k) {
         const auto cells = segs[k].cell_data();
         for (std::size_t c = 0; c < cells.size(); ++c)
           for (int i = 0; i <= static_cast<int>(D); ++i)
-            if (segs[k].neighbour(static_cast<cell_id>(c), i) == no_cell) f(k, facet_of(cells[c], i));
-      }
-    };
-    auto sorted = [](auto f) {
-      std::sort(f.begin(), f.end());
-      return f;
-    };
-    each_boundary_facet([&](std::size_t k, const auto& f) {
-      auto [it, fresh] = map.try_emplace(sorted(f), sides{k, k, 0});
-      if (++it->second.count > 2) throw io_error::whole(file, "a facet is shared by more than two cells");
-      if (!fresh) it->second.b = k;
-    });
+            if (segs[k].neighbour(static_cast<cell_id>(c), i) == no_cell) per[k].push_back({facet_of(cells[c], i), k});
+      };
+      std::vector<std::jthread> pool;  // the segments are independent
+      for (std::size_t k = 1; k < segs.size() && threads > 1; ++k) pool.emplace_back(collect, k);
+      collect(0);
+      for (std::size_t k = 1; k < segs.size() && threads <= 1; ++k) collect(k);
+    }
+    std::vector<candidate> all;
+    for (auto& v : per) all.insert(all.end(), v.begin(), v.end());
+    std::vector<std::pair<std::array<vertex_id, D>, std::uint32_t>> keys(all.size());
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      keys[i] = {all[i].f, static_cast<std::uint32_t>(i)};
+      std::sort(keys[i].first.begin(), keys[i].first.end());
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<long> other(all.size(), -1);  // the candidate on the other side, if any
+    for (std::size_t i = 0; i < keys.size();) {
+      std::size_t j = i + 1;
+      while (j < keys.size() && keys[j].first == keys[i].first) ++j;
+      if (j - i > 2) throw io_error::whole(file, "a facet is shared by more than two cells");
+      if (j - i == 2) other[keys[i].second] = keys[i + 1].second, other[keys[i + 1].second] = keys[i].second;
+      i = j;
+    }
     std::vector<outer_facet<D>> r;
-    each_boundary_facet([&](std::size_t k, const auto& f) {
-      const auto& u = map.at(sorted(f));
-      if (u.count == 1) return r.push_back({f, k, -1});
-      const std::size_t other = k == u.a ? u.b : u.a;
-      const auto na = segs[k].number(), nb = segs[other].number();
-      if (na < nb || (na == nb && k < other)) r.push_back({f, k, static_cast<long>(other)});
-    });
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      const std::size_t k = all[i].k;
+      if (other[i] < 0) {
+        r.push_back({all[i].f, k, -1});
+        continue;
+      }
+      const std::size_t o = all[static_cast<std::size_t>(other[i])].k;
+      if (o == k) throw io_error::whole(file, "a facet is shared by more than two cells");
+      const auto na = segs[k].number(), nb = segs[o].number();
+      if (na < nb || (na == nb && k < o)) r.push_back({all[i].f, k, static_cast<long>(o)});
+    }
     return r;
   }
   std::unordered_map<std::array<vertex_id, D>, use, key_hash> map;

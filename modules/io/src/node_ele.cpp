@@ -118,7 +118,7 @@ void write_node_ele(const domain<D>& d, const std::string& path, unsigned thread
   const std::string base = strip_mesh_extension(path);
   const auto& pts = d.points();
   detail::check_domain(d, base + ".ele");
-  const auto faces = detail::outer_facets(d, base + (D == 3 ? ".face" : ".edge"));
+  const auto faces = detail::outer_facets(d, base + (D == 3 ? ".face" : ".edge"), threads);
   int largest = 0;
   for (const auto& s : d.segments()) largest = std::max(largest, std::abs(s.number()));
   int m = 100;

@@ -4,6 +4,7 @@
 // Both derived relations are built by finalize() and dropped by any mutation.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <exception>
 #include <span>
@@ -78,18 +79,23 @@ class simplicial_complex {
     for (auto& n : nbrs_) n.fill(no_cell);
     const std::size_t nv = vstart_.empty() ? 0 : vstart_.size() - 1;
     if (threads <= 1 || nv < 4096) return match_facets(0, nv);
-    // each facet is matched at its smallest vertex, so vertex ranges write disjoint entries
+    // each facet is matched at its smallest vertex, so vertex ranges write disjoint entries; the
+    // ranges are small and handed out as threads come free (low ids own more facets)
+    constexpr std::size_t range = 2048;
+    std::atomic<std::size_t> next{0};
     std::vector<std::exception_ptr> errors(threads);
+    auto work = [&](unsigned t) {
+      try {
+        for (std::size_t a; (a = next.fetch_add(range)) < nv;) match_facets(a, std::min(nv, a + range));
+      } catch (...) {
+        errors[t] = std::current_exception();
+        next.store(nv);
+      }
+    };
     {
       std::vector<std::jthread> pool;
-      for (unsigned t = 0; t < threads; ++t)
-        pool.emplace_back([&, t] {
-          try {
-            match_facets(nv * t / threads, nv * (t + 1) / threads);
-          } catch (...) {
-            errors[t] = std::current_exception();
-          }
-        });
+      for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
+      work(0);
     }
     for (auto& e : errors)
       if (e) std::rethrow_exception(e);
