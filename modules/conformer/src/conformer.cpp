@@ -699,9 +699,15 @@ class state3 : public state<3> {
   /// coordinate is copied), within rounding on slanted ones.
   void seed_facets() {
     const double h = opt_.size;
-    for (std::uint32_t f = 0; f < facets_.size(); ++f) {
-      auto& S = facets_[f];
-      if (S.loops.empty()) continue;
+    // each facet's lattice is computed in parallel (it reads only its own facet), then the points
+    // are added facet by facet, so ids are the same for any thread count
+    std::vector<std::vector<point3>> seeds(facets_.size());
+    std::vector<std::uint32_t> ids(facets_.size());
+    std::iota(ids.begin(), ids.end(), 0u);
+    const auto base = static_cast<vertex_id>(out_.points.size());
+    for_each(execution::par(opt_.threads), ids, [&](std::uint32_t f) {
+      const auto& S = facets_[f];
+      if (S.loops.empty()) return;
       const auto vs = facet_vertices(f);
       const point3 o = out_.points[vs[0]];
       // in-plane orthonormal basis (u along the first boundary edge)
@@ -709,7 +715,7 @@ class state3 : public state<3> {
       point3 u = out_.points[e0.v] - out_.points[e0.u];
       point3 n{0, 0, 0};
       for (std::size_t i = 1; i + 1 < vs.size() && dot(n, n) == 0; ++i) n = cross(u, out_.points[vs[i + 1]] - out_.points[vs[0]]);
-      if (dot(n, n) == 0) continue;
+      if (dot(n, n) == 0) return;
       u = (1.0 / std::sqrt(dot(u, u))) * u;
       n = (1.0 / std::sqrt(dot(n, n))) * n;
       const point3 v = cross(n, u);
@@ -719,6 +725,8 @@ class state3 : public state<3> {
         ulo = std::min(ulo, dot(d, u)), uhi = std::max(uhi, dot(d, u));
         vlo = std::min(vlo, dot(d, v)), vhi = std::max(vhi, dot(d, v));
       }
+      auto& mine = seeds[f];
+      auto at = [&](vertex_id w) -> const point3& { return w < base ? out_.points[w] : mine[w - base]; };
       hash_grid<3> near(o, 0.5 * h);
       for (vertex_id w : vs) near.insert(w, out_.points[w]);
       const double row = h * std::sqrt(3.0) / 2;
@@ -732,12 +740,14 @@ class state3 : public state<3> {
           bool clear = true;
           point3 lo, hi;
           for (std::size_t k = 0; k < 3; ++k) lo[k] = q[k] - 0.5 * h, hi[k] = q[k] + 0.5 * h;
-          near.visit(lo, hi, [&](vertex_id w) { clear = clear && squared_distance(out_.points[w], q) >= 0.25 * h * h; });
+          near.visit(lo, hi, [&](vertex_id w) { clear = clear && squared_distance(at(w), q) >= 0.25 * h * h; });
           if (!clear || locate(f, q) < 0) continue;
-          S.interior.push_back(add_point(q, {home::facet, f}));
-          near.insert(static_cast<vertex_id>(out_.points.size() - 1), q);
+          near.insert(static_cast<vertex_id>(base + mine.size()), q);
+          mine.push_back(q);
         }
-    }
+    }, [&](std::uint32_t f) { return static_cast<double>(boundary_size(f)); });
+    for (std::uint32_t f = 0; f < facets_.size(); ++f)
+      for (const auto& q : seeds[f]) facets_[f].interior.push_back(add_point(q, {home::facet, f}));
   }
 
   std::size_t vertex_count(std::uint32_t f) const { return boundary_size(f) + facets_[f].interior.size(); }

@@ -4,7 +4,9 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <exception>
 #include <memory>
+#include <thread>
 #include <unordered_map>
 
 #include "facets.hpp"
@@ -170,9 +172,26 @@ void write_node_ele(const domain<D>& d, const std::string& path, unsigned thread
     t.numbers.push_back(s.number());
   }
   t.face_marker_base = m;
-  node.commit();
-  ele.commit();
-  face.commit();
+  if (threads > 1) {
+    // replacing a large existing file frees its pages while renaming: overlap the three
+    std::exception_ptr error;
+    {
+      std::jthread a([&] {
+        try {
+          ele.commit();
+        } catch (...) {
+          error = std::current_exception();
+        }
+      });
+      node.commit();
+      face.commit();
+    }
+    if (error) std::rethrow_exception(error);
+  } else {
+    node.commit();
+    ele.commit();
+    face.commit();
+  }
   write_sidecar(base + ".json", t);
 }
 template void write_node_ele<2>(const domain<2>&, const std::string&, unsigned);

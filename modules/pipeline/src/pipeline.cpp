@@ -230,7 +230,7 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
   unsized.size = 0;
   auto b = conformer::conform(p, {}, unsized);
   const auto l = conformer::label(b, p, co.threads);
-  const auto coarse = wrap_all(b.points, b, l, 1);
+  const auto coarse = wrap_all(b.points, b, l, co.threads);
   std::vector<cell_t<D>> all;
   for (const auto& cs : coarse) all.insert(all.end(), cs.begin(), cs.end());
   point<D> lo = b.points[0], hi = b.points[0];
