@@ -129,66 +129,91 @@ class point_grid {
     }
     return true;
   }
-  /// Calls g(linear cell index) for every grid cell that meets the ball (c, r) and the half-space
-  /// {x : dot(n, x) >= d} (n = 0, d <= 0: no half-space), row by row: each row of cells along
-  /// axis 0 is clipped to the ball's slice and the half-space. Conservative: cell bounds are padded
-  /// by 1e-10 of the grid's extent against rounding in the point-to-cell assignment.
+  /// Calls g(first, last) for the runs of consecutive grid cells (linear indices first..last, one
+  /// run per row of cells along axis 0) that meet the ball (c, r) and the half-space
+  /// {x : dot(n, x) >= d} (n = 0, d <= 0: no half-space). Each row is clipped to the ball's slice
+  /// and to the half-space. Conservative: cell bounds are padded by 1e-10 of the grid's extent
+  /// against rounding in the point-to-cell assignment.
   template <class F>
-  bool visit_cells(const coord& c, double r, const coord& n, double d, F&& g) const {
+  bool visit_rows(const coord& c, double r, const coord& n, double d, F&& g) const {
     coord lo, hi;
     for (std::size_t a = 0; a < G; ++a) lo[a] = c[a] - r, hi[a] = c[a] + r;
     const auto ka = cell_index(lo), kb = cell_index(hi);
-    bool small = true;  // a few cells: clipping them would cost more than visiting them
-    for (std::size_t a = 0; a < G; ++a) small &= kb[a] - ka[a] <= 1;
-    if (small) return visit_cells(lo, hi, g);
     const double pad = 1e-10 * extent_;
     const double r2 = (r + pad) * (r + pad);
-    // the x-cells of one row (fixed higher coordinates, bounds [rlo, rhi] on axes >= 1)
-    auto row = [&](const coord& rlo, const coord& rhi, double rest, std::size_t base) {
+    const double inv_n0 = n[0] != 0 ? 1.0 / n[0] : 0.0;
+    // per higher axis and cell: squared distance of c to the cell's slab, and the largest
+    // value of n[a] * x[a] over it
+    constexpr long small_span = 64;  // on the stack; larger balls (rare) on the heap
+    std::array<std::array<double, small_span>, G> gap2_small, top_small;
+    std::vector<double> heap;
+    std::array<double*, G> gap2{}, top{};
+    long span = 0;
+    for (std::size_t a = 1; a < G; ++a) span = std::max(span, kb[a] - ka[a] + 1);
+    if (span > small_span) heap.resize(2 * G * static_cast<std::size_t>(span));
+    for (std::size_t a = 1; a < G; ++a) {
+      gap2[a] = span > small_span ? heap.data() + (2 * a) * static_cast<std::size_t>(span) : gap2_small[a].data();
+      top[a] = span > small_span ? heap.data() + (2 * a + 1) * static_cast<std::size_t>(span) : top_small[a].data();
+      for (long k = ka[a]; k <= kb[a]; ++k) {
+        const double clo = lo_[a] + static_cast<double>(k) * step_[a] - pad, chi = clo + step_[a] + 2 * pad;
+        const double e = c[a] < clo ? clo - c[a] : c[a] > chi ? c[a] - chi : 0.0;
+        gap2[a][static_cast<std::size_t>(k - ka[a])] = e * e;
+        top[a][static_cast<std::size_t>(k - ka[a])] = n[a] * (n[a] > 0 ? chi : clo);
+      }
+    }
+    // one row: rest = r2 minus the higher axes' gaps, m = max of dot(n, x) - d without axis 0
+    auto row = [&](double rest, double m, std::size_t base) {
       const double s = std::sqrt(rest);
       double xa = c[0] - s, xb = c[0] + s;
-      double m = -d;  // max of dot(n, x) - d over the row's higher axes
-      for (std::size_t a = 1; a < G; ++a) m += n[a] * (n[a] > 0 ? rhi[a] : rlo[a]);
-      if (n[0] > 0) xa = std::max(xa, -m / n[0] - pad);
-      else if (n[0] < 0) xb = std::min(xb, -m / n[0] + pad);
+      if (n[0] > 0) xa = std::max(xa, -m * inv_n0 - pad);
+      else if (n[0] < 0) xb = std::min(xb, -m * inv_n0 + pad);
       else if (m < 0) return true;
       if (!(xa <= xb)) return true;
       const long x0 = std::max(ka[0], axis_index(0, xa)), x1 = std::min(kb[0], axis_index(0, xb));
-      for (long x = x0; x <= x1; ++x)
-        if (!g(base + static_cast<std::size_t>(x))) return false;
-      return true;
+      return x0 > x1 || g(base + static_cast<std::size_t>(x0), base + static_cast<std::size_t>(x1));
     };
-    auto gap = [&](std::size_t a, long k, double& clo, double& chi) {  // distance of c[a] to cell k
-      clo = lo_[a] + static_cast<double>(k) * step_[a] - pad;
-      chi = clo + step_[a] + 2 * pad;
-      const double e = std::max({0.0, clo - c[a], c[a] - chi});
-      return e * e;
-    };
-    coord rlo{}, rhi{};
     if constexpr (G == 2) {
       for (long y = ka[1]; y <= kb[1]; ++y) {
-        const double rest = r2 - gap(1, y, rlo[1], rhi[1]);
-        if (rest >= 0 && !row(rlo, rhi, rest, static_cast<std::size_t>(y) * static_cast<std::size_t>(dims_[0])))
+        const auto j = static_cast<std::size_t>(y - ka[1]);
+        const double rest = r2 - gap2[1][j];
+        if (rest >= 0 && !row(rest, top[1][j] - d, static_cast<std::size_t>(y) * static_cast<std::size_t>(dims_[0])))
           return false;
       }
     } else {
       for (long z = ka[2]; z <= kb[2]; ++z) {
-        const double rz = r2 - gap(2, z, rlo[2], rhi[2]);
+        const auto i = static_cast<std::size_t>(z - ka[2]);
+        const double rz = r2 - gap2[2][i];
         if (rz < 0) continue;
         for (long y = ka[1]; y <= kb[1]; ++y) {
-          const double rest = rz - gap(1, y, rlo[1], rhi[1]);
-          if (rest >= 0 && !row(rlo, rhi, rest, linear({0, y, z}))) return false;
+          const auto j = static_cast<std::size_t>(y - ka[1]);
+          const double rest = rz - gap2[1][j];
+          if (rest >= 0 && !row(rest, top[1][j] + top[2][i] - d, linear({0, y, z}))) return false;
         }
       }
     }
     return true;
   }
-  /// Calls f(vertex_id, const coord&) for every point in the cells visit_cells(c, r, n, d) lists.
+  /// Calls g(linear cell index) for every cell of the runs visit_rows(c, r, n, d) lists.
+  template <class F>
+  bool visit_cells(const coord& c, double r, const coord& n, double d, F&& g) const {
+    return visit_rows(c, r, n, d, [&](std::size_t first, std::size_t last) {
+      for (std::size_t cell = first; cell <= last; ++cell)
+        if (!g(cell)) return false;
+      return true;
+    });
+  }
+  /// Calls f(vertex_id, const coord&) for every point in the cells visit_rows(c, r, n, d) lists:
+  /// the points of a run of cells are contiguous, so each row is one loop.
   template <bool Local = false, class F>
   bool visit_ball(const coord& c, double r, const coord& n, double d, F&& f) const {
-    return visit_cells(c, r, n, d, [&](std::size_t cell) { return visit_cell<Local>(cell, f); });
+    return visit_rows(c, r, n, d, [&](std::size_t first, std::size_t last) {
+      for (auto k = start_[first]; k < start_[last + 1]; ++k)
+        if (!f(Local ? static_cast<vertex_id>(k) : ids_[k], xyz_[k])) return false;
+      return true;
+    });
   }
   std::size_t cell_count() const { return start_.size() - 1; }
+
   /// Mean edge length of a grid cell over the non-flat axes.
   double mean_step() const {
     double s = 0;
