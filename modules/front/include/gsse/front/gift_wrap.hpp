@@ -316,14 +316,17 @@ class gift_wrapper {
       Rt = Rt * (1 + 1e-6) + 4 * (dot(n, pr.cc) - d);
       seen_.clear();
       const double R2 = Rt * Rt;
-      visit_cap(ct, Rt, n, d, [&](vertex_id y, const coord& q) {
-        ++stats_.visits;
+      std::size_t visits = 0;
+      // the cap's terms by value: kept in registers through the scan (push_back may alias them)
+      visit_cap(ct, Rt, n, d, [&, ct = ct, n = n, d = d, R2 = R2, f = f](vertex_id y, const coord& q) {
+        ++visits;
         double d2 = 0;
         for (std::size_t a = 0; a < G; ++a) d2 += (q[a] - ct[a]) * (q[a] - ct[a]);
         if (d2 > R2 || dot(n, q) < d || in_face(f, y)) return true;
         seen_.push_back({y, K::estimate(pr, q), q});
         return true;
       });
+      stats_.visits += visits;
       // the best-ranked vertex is nearly always exactly positive; sort only when it is not
       auto by_rank = [](const seen& x, const seen& y) { return x.t < y.t || (x.t == y.t && x.id < y.id); };
       const auto first = std::min_element(seen_.begin(), seen_.end(), by_rank);

