@@ -49,6 +49,7 @@ struct volume_kernel {
     return geometry::in_sphere_perturbed(p[f[0]], p[f[1]], p[f[2]], p[x], p[y]) > 0;
   }
   coord grid_coord(vertex_id v) const { return p[v]; }
+  const point3& grid_coord_ref(vertex_id v) const { return p[v]; }
   bool ball(const face& f, vertex_id x, coord& centre, double& r) const {
     const point3& a = p[f[0]];
     const point3 u = p[f[1]] - a, v = p[f[2]] - a, w = p[x] - a;
@@ -128,6 +129,7 @@ struct plane_kernel {
     return geometry::in_circle_perturbed(p[f[0]], p[f[1]], p[x], p[y]) > 0;
   }
   coord grid_coord(vertex_id v) const { return p[v]; }
+  const point2& grid_coord_ref(vertex_id v) const { return p[v]; }
   bool ball(const face& f, vertex_id x, coord& centre, double& r) const {
     const point2& a = p[f[0]];
     const point2 u = p[f[1]] - a, v = p[x] - a;
@@ -168,6 +170,7 @@ struct facet_kernel {
     return geometry::in_coplanar_circle_perturbed(p[f[0]], p[f[1]], p[x], p[y], axis) > 0;
   }
   coord grid_coord(vertex_id v) const { return geometry::project(p[v], axis); }
+  const point3& grid_coord_ref(vertex_id v) const { return p[v]; }  // for prefetching only
   bool ball(const face& f, vertex_id x, coord& centre, double& r) const {
     const point3& a = p[f[0]];
     const point3 u = p[f[1]] - a, v = p[x] - a;
