@@ -558,6 +558,17 @@ class state3 : public state<3> {
     return std::nullopt;
   }
 
+  /// True if a point of `g` lies in the closed equatorial ball of subfacet T (exact).
+  bool in_closed_ball(const hash_grid<3>& g, const std::array<vertex_id, 3>& T) const {
+    const auto& p = out_.points;
+    const auto [cc, r] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]);
+    point3 lo, hi;
+    for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
+    return !g.visit(lo, hi, [&](vertex_id w) {
+      return squared_distance(cc, p[w]) > r * r || geometry::in_equatorial(p[T[0]], p[T[1]], p[T[2]], p[w]) < 0;
+    });
+  }
+
   /// Encroacher of every subfacet at the start of a round (no_vertex: clean), computed in parallel
   /// over pieces of facets. A subfacet found clean at the last check (the same three corners,
   /// whether or not its facet was triangulated again since) can be encroached only by a point
@@ -586,19 +597,10 @@ class state3 : public state<3> {
       for (std::size_t t = w.a; t < w.b; ++t) {
         const auto& T = S.triangles[t];
         auto key = T;
-        std::sort(key.begin(), key.end());
-        if (S.checked || std::binary_search(S.clean.begin(), S.clean.end(), key)) {
-          // clean at the last check: only a point inserted since can encroach it
-          const auto [cc, r] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]);
-          point3 lo, hi;
-          for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
-          bool touched = false;
-          recent.visit(lo, hi, [&](vertex_id w) {
-            touched = touched || (squared_distance(cc, p[w]) <= r * r &&
-                                  geometry::in_equatorial(p[T[0]], p[T[1]], p[T[2]], p[w]) >= 0);
-          });
-          if (!touched) continue;
-        }
+        if (!S.checked) std::sort(key.begin(), key.end());
+        // clean at the last check: only a point inserted since can encroach it
+        if ((S.checked || std::binary_search(S.clean.begin(), S.clean.end(), key)) && !in_closed_ball(recent, T))
+          continue;
         enc[w.f][t] = facet_encroacher(T[0], T[1], T[2], ties);
       }
     };
@@ -638,18 +640,9 @@ class state3 : public state<3> {
         const bool too_big = opt_.size > 0 && std::max({distance(p[T[0]], p[T[1]]), distance(p[T[1]], p[T[2]]),
                                                           distance(p[T[2]], p[T[0]])}) > opt_.size * (1 + 1e-9);
         if (y == no_vertex && !too_big) continue;
-        bool stale = false;
-        if (any_fresh) {
-          const auto [cc, r] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]);
-          point3 lo, hi;
-          for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
-          fresh.visit(lo, hi, [&](vertex_id w) {
-            stale = stale || (squared_distance(cc, p[w]) <= r * r && geometry::in_equatorial(p[T[0]], p[T[1]], p[T[2]], p[w]) >= 0);
-          });
-        }
         // not stale: no point inserted in this phase lies in its ball, so the encroacher found at
         // the start of the round stands
-        if (stale) continue;
+        if (any_fresh && in_closed_ball(fresh, T)) continue;
         std::vector<point3> elem{p[T[0]], p[T[1]], p[T[2]]};
         point3 q;
         if (y != no_vertex) {

@@ -4,13 +4,14 @@
 #include <algorithm>
 #include <array>
 #include <cstdlib>
+#include <numeric>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
-#include <thread>
 #include <vector>
 
 #include "gsse/container/domain.hpp"
+#include "gsse/traversal/for_each.hpp"
 #include "gsse/io/error.hpp"
 
 namespace gsse::io::detail {
@@ -79,10 +80,9 @@ std::vector<outer_facet<D>> outer_facets(const domain<D>& d, const std::string& 
           for (int i = 0; i <= static_cast<int>(D); ++i)
             if (segs[k].neighbour(static_cast<cell_id>(c), i) == no_cell) per[k].push_back({facet_of(cells[c], i), k});
       };
-      std::vector<std::jthread> pool;  // the segments are independent
-      for (std::size_t k = 1; k < segs.size() && threads > 1; ++k) pool.emplace_back(collect, k);
-      collect(0);
-      for (std::size_t k = 1; k < segs.size() && threads <= 1; ++k) collect(k);
+      std::vector<std::size_t> ks(segs.size());  // the segments are independent
+      std::iota(ks.begin(), ks.end(), std::size_t{0});
+      for_each(execution::par(threads), ks, collect, [&](std::size_t k) { return static_cast<double>(segs[k].num_cells()); });
     }
     std::vector<candidate> all;
     for (auto& v : per) all.insert(all.end(), v.begin(), v.end());

@@ -6,8 +6,10 @@
 #include <charconv>
 #include <ostream>
 #include <string>
-#include <thread>
+#include <numeric>
 #include <vector>
+
+#include "gsse/traversal/for_each.hpp"
 
 namespace gsse::io::detail {
 
@@ -23,17 +25,15 @@ void write_lines(std::ostream& o, std::size_t n, unsigned threads, Line&& line) 
   constexpr std::size_t chunk = 1 << 15;
   threads = std::max(1u, threads);
   std::vector<std::string> buf(threads);
+  std::vector<unsigned> ts(threads);
+  std::iota(ts.begin(), ts.end(), 0u);
   for (std::size_t start = 0; start < n; start += chunk * threads) {
     auto fill = [&](unsigned t) {
       buf[t].clear();
       const std::size_t a = std::min(n, start + t * chunk), b = std::min(n, a + chunk);
       for (std::size_t i = a; i < b; ++i) line(i, buf[t]);
     };
-    {
-      std::vector<std::jthread> pool;
-      for (unsigned t = 1; t < threads && start + t * chunk < n; ++t) pool.emplace_back(fill, t);
-      fill(0);
-    }
+    for_each(execution::par(threads), ts, fill);
     for (const auto& b : buf) o.write(b.data(), static_cast<std::streamsize>(b.size()));
     for (auto& b : buf) b.clear();
   }

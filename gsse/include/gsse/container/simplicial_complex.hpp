@@ -4,15 +4,13 @@
 // Both derived relations are built by finalize() and dropped by any mutation.
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cstddef>
-#include <exception>
 #include <span>
 #include <stdexcept>
-#include <thread>
 #include <vector>
 
 #include "gsse/topology/simplex.hpp"
+#include "gsse/traversal/for_each.hpp"
 
 namespace gsse {
 
@@ -82,23 +80,9 @@ class simplicial_complex {
     // each facet is matched at its smallest vertex, so vertex ranges write disjoint entries; the
     // ranges are small and handed out as threads come free (low ids own more facets)
     constexpr std::size_t range = 2048;
-    std::atomic<std::size_t> next{0};
-    std::vector<std::exception_ptr> errors(threads);
-    auto work = [&](unsigned t) {
-      try {
-        for (std::size_t a; (a = next.fetch_add(range)) < nv;) match_facets(a, std::min(nv, a + range));
-      } catch (...) {
-        errors[t] = std::current_exception();
-        next.store(nv);
-      }
-    };
-    {
-      std::vector<std::jthread> pool;
-      for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
-      work(0);
-    }
-    for (auto& e : errors)
-      if (e) std::rethrow_exception(e);
+    std::vector<std::size_t> starts;
+    for (std::size_t a = 0; a < nv; a += range) starts.push_back(a);
+    for_each(execution::par(threads), starts, [&](std::size_t a) { match_facets(a, std::min(nv, a + range)); });
   }
   void match_facets(std::size_t v0, std::size_t v1) {
     struct entry {

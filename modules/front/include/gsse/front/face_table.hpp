@@ -22,12 +22,6 @@ class face_table {
     face key;             // sorted vertices; key[0] == no_vertex marks an empty slot
     std::uint32_t odd;    // 1 if the stored orientation is an odd permutation of key
     bool empty() const { return key[0] == no_vertex; }
-    /// The face as stored: its positive side is the unmeshed side.
-    face oriented() const {
-      face f = key;
-      if (odd) std::swap(f[0], f[1]);
-      return f;
-    }
   };
 
   explicit face_table(std::size_t expected = 64) { rehash(std::max<std::size_t>(64, expected * 2)); }
@@ -78,8 +72,6 @@ class face_table {
     ++size_;
     if (2 * size_ > slots_.size()) rehash(slots_.size() * 2);
   }
-  /// Inserts f as open; f must not be present.
-  void insert(const face& f) { fill(probe(f), f); }
   /// Removes the entry e points to (from find or probe).
   void erase(entry* e) {
     std::size_t i = static_cast<std::size_t>(e - slots_.data());

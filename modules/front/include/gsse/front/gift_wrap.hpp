@@ -15,6 +15,7 @@
 // positive side, a better ball is contained in the worse one, so the scan may shrink as it goes
 // and never misses a vertex. Decisions are exact; the double ball only bounds the scan region.
 #include <algorithm>
+#include <cmath>
 #include <deque>
 #include <functional>
 #include <limits>
@@ -61,7 +62,11 @@ class gift_wrapper {
   using cell = std::array<vertex_id, D + 1>;
   using coord = std::array<double, G>;
 
-  gift_wrapper(const K& k, const point_grid<G>& grid) : k_(k), grid_(grid) {}
+  gift_wrapper(const K& k, const point_grid<G>& grid) : k_(k), grid_(grid) {
+    for (std::size_t a = 0; a < G; ++a)
+      diagonal_ += (grid_.upper()[a] - grid_.lower()[a]) * (grid_.upper()[a] - grid_.lower()[a]);
+    diagonal_ = std::sqrt(diagonal_);
+  }
 
   /// Rule-driven point creation (point_creation.hpp): after the apex x of face f is found,
   /// `create(f, x, cells)` may insert points (into the kernel's point array and `overlay`).
@@ -95,9 +100,10 @@ class gift_wrapper {
     const auto limit = [&] {
       return auto_limit ? 64 * (grid_.size() + (overlay_ ? overlay_->size() : 0)) + boundary.size() : max_cells;
     };
-    auto build = [&](const face& f, vertex_id x) {
-      add_cell(table, cells, table.find(f), f, x, label, [&](const face& r) { queue.push_back(r); });
-      if (cells.size() > limit()) throw front_error(label + ": more than " + std::to_string(limit()) + " cells; giving up");
+    // the open face's entry `at` (from find) stays valid through apex(), which leaves the table alone
+    auto build = [&](typename face_table<D>::entry* at, const face& f, vertex_id x) {
+      add_cell(table, cells, at, f, x, label, [&](const face& r) { queue.push_back(r); });
+      check_limit(cells, limit(), label);
     };
     if (!create_) {
       while (!queue.empty()) {
@@ -107,11 +113,7 @@ class gift_wrapper {
           table.prefetch(queue[8]);
           for (auto v : queue[8]) __builtin_prefetch(&k_.grid_coord_ref(v));
         }
-        if (auto* at = table.find(f)) {  // else closed since it was pushed
-          const vertex_id x = apex(f, label);  // leaves the table alone: `at` stays valid
-          add_cell(table, cells, at, f, x, label, [&](const face& r) { queue.push_back(r); });
-          if (cells.size() > limit()) throw front_error(label + ": more than " + std::to_string(limit()) + " cells; giving up");
-        }
+        if (auto* at = table.find(f)) build(at, f, apex(f, label));  // else closed since it was pushed
       }
     } else {
       // Point creation works by generations (the faces open at one time): first every face of
@@ -132,14 +134,15 @@ class gift_wrapper {
           declined[i] = create_(gen[i], first[i], cells) == creation::declined;
         }
         for (std::size_t i = 0; i < gen.size(); ++i) {
-          if (!table.find(gen[i])) continue;
+          auto* at = table.find(gen[i]);
+          if (!at) continue;
           const vertex_id x = apex(gen[i], label);
           // still the far apex for which no point could be placed: wait for the neighbours
           if (declined[i] && x == first[i] && defer(gen[i])) {
             queue.push_back(gen[i]);
             continue;
           }
-          build(gen[i], x);
+          build(at, gen[i], x);
         }
       }
     }
@@ -178,8 +181,7 @@ class gift_wrapper {
       const vertex_id x = apex(f, label);
       add_cell(table, cells, at, f, x, label,
                [&](const face& r) { (crosses(r) ? queue.push_back(r) : parked.push_back(r)); });
-      if (cells.size() > 64 * grid_.size() + boundary.size())
-        throw front_error(label + ": more than " + std::to_string(64 * grid_.size() + boundary.size()) + " cells; giving up");
+      check_limit(cells, 64 * grid_.size() + boundary.size(), label);
     }
     for (const face& f : parked)
       if (table.find(f)) sides[static_cast<std::size_t>(side_of(f[0]))].push_back(f);
@@ -197,6 +199,10 @@ class gift_wrapper {
     if (n >= max_defer_) return false;
     ++n;
     return true;
+  }
+
+  void check_limit(const std::vector<cell>& cells, std::size_t limit, const std::string& label) const {
+    if (cells.size() > limit) throw front_error(label + ": more than " + std::to_string(limit) + " cells; giving up");
   }
 
   /// Builds the cell f + x: its other facets close matching open faces or open new ones (passed
@@ -303,9 +309,7 @@ class gift_wrapper {
     // beyond a cap 256 times as high as the grid is wide, what is left lies nearly in the face's
     // plane, outside its circumcircle: rank it all (a lower bound, 4x, sent the faces of thin
     // lenses near the hull of the benchmark cube to that scan: 20% of all visits at 1e6 points)
-    double top = 0;
-    for (std::size_t a = 0; a < G; ++a) top += (grid_.upper()[a] - grid_.lower()[a]) * (grid_.upper()[a] - grid_.lower()[a]);
-    top = 256 * std::sqrt(top);
+    const double top = 256 * diagonal_;
     for (double h = std::min(2 * std::sqrt(pr.r2), 2 * grid_.mean_step());; h *= 2) {
       const double t = (h * h - pr.r2) / (2 * h);
       Rt = h - t;
@@ -387,12 +391,9 @@ class gift_wrapper {
     double best_t = std::numeric_limits<double>::infinity();
     // the whole grid on the positive side
     coord c, n;
-    double r = 0, d = 0;
-    for (std::size_t a = 0; a < G; ++a) {
-      c[a] = 0.5 * (grid_.lower()[a] + grid_.upper()[a]);
-      r += (grid_.upper()[a] - grid_.lower()[a]) * (grid_.upper()[a] - grid_.lower()[a]);
-    }
-    r = std::sqrt(r) + pr.l;
+    double d = 0;
+    for (std::size_t a = 0; a < G; ++a) c[a] = 0.5 * (grid_.lower()[a] + grid_.upper()[a]);
+    const double r = diagonal_ + pr.l;
     positive_side(pr, r + std::sqrt(dot(c - pr.cc, c - pr.cc)), n, d);
     visit_cap(c, r, n, d, [&](vertex_id y, const coord& q) {
       ++stats_.visits;
@@ -509,6 +510,7 @@ class gift_wrapper {
 
   const K& k_;
   const point_grid<G>& grid_;
+  double diagonal_ = 0;  // of the grid's box
   const point_overlay<G>* overlay_ = nullptr;
   creator create_;
   unsigned max_defer_ = 0;

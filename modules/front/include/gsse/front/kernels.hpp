@@ -15,7 +15,6 @@
 //                       estimate(probe, q): the "Delaunay distance" of a point (offset of the
 //                       circumcentre of f+q along f's normal; +inf behind f), a ranking hint
 //                       only: every decision is confirmed exactly
-//   seed(probe, lo, hi) first search box
 //   grid_coord(v)       grid coordinates of vertex v
 #include <array>
 #include <cmath>
@@ -84,17 +83,10 @@ struct volume_kernel {
     const double h = dot(d, pr.n);
     return h > 0 ? (dot(d, d) - pr.r2) / (2 * h) : std::numeric_limits<double>::infinity();
   }
-  static void seed(const probe& pr, coord& lo, coord& hi) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      const double m = pr.cc[k] + 0.4 * pr.l * pr.n[k];
-      lo[k] = m - 0.5 * pr.l;
-      hi[k] = m + 0.5 * pr.l;
-    }
-  }
 };
 
-/// Ranking hint and seed box of an edge front (2D grids): the edge's midpoint, left unit normal,
-/// squared half length and length, in grid coordinates.
+/// Ranking hint of an edge front (2D grids): the edge's midpoint, left unit normal, squared half
+/// length, length and direction error bound, in grid coordinates.
 struct edge_probe {
   point2 cc, n;
   double r2, l, tilt;
@@ -106,13 +98,6 @@ struct edge_probe {
     const point2 d = q - pr.cc;
     const double h = dot(d, pr.n);
     return h > 0 ? (dot(d, d) - pr.r2) / (2 * h) : std::numeric_limits<double>::infinity();
-  }
-  static void seed(const edge_probe& pr, std::array<double, 2>& lo, std::array<double, 2>& hi) {
-    for (std::size_t k = 0; k < 2; ++k) {
-      const double m = pr.cc[k] + 0.4 * pr.l * pr.n[k];
-      lo[k] = m - 0.5 * pr.l;
-      hi[k] = m + 0.5 * pr.l;
-    }
   }
 };
 
@@ -148,7 +133,6 @@ struct plane_kernel {
   using probe = edge_probe;
   probe prepare(const face& f) const { return edge_probe::of(p[f[0]], p[f[1]]); }
   static double estimate(const probe& pr, const coord& q) { return edge_probe::estimate(pr, q); }
-  static void seed(const probe& pr, coord& lo, coord& hi) { edge_probe::seed(pr, lo, hi); }
 };
 
 /// Triangles of a planar facet of a 3D PLC: 3D points, combinatorics in the projection that drops
@@ -196,7 +180,6 @@ struct facet_kernel {
     return edge_probe::of(geometry::project(p[f[0]], axis), geometry::project(p[f[1]], axis));
   }
   static double estimate(const probe& pr, const coord& q) { return edge_probe::estimate(pr, q); }
-  static void seed(const probe& pr, coord& lo, coord& hi) { edge_probe::seed(pr, lo, hi); }
 };
 
 }  // namespace gsse::front

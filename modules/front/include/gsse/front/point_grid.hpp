@@ -68,7 +68,6 @@ class point_grid {
         total *= static_cast<std::size_t>(dims_[a]);
       }
     }
-    extent_ = 0;
     for (std::size_t a = 0; a < G; ++a) {
       const double e = hi_[a] - lo_[a];
       inv_[a] = e > 0 ? static_cast<double>(dims_[a]) / e : 0.0;
@@ -226,7 +225,6 @@ class point_grid {
       if (step_[a] > 0) s += step_[a], ++k;
     return k ? s / k : 1.0;
   }
-  const std::array<long, G>& dims() const { return dims_; }
   template <bool Local = false, class F>
   bool visit_cell(std::size_t cell, F& f) const {
     for (auto k = start_[cell]; k < start_[cell + 1]; ++k)
@@ -246,7 +244,7 @@ class point_grid {
   const coord& lower() const { return lo_; }
   const coord& upper() const { return hi_; }
   /// Edge length of a grid cell along axis a.
-  double cell_size(std::size_t a) const { return inv_[a] > 0 ? 1.0 / inv_[a] : 0.0; }
+  double cell_size(std::size_t a) const { return step_[a]; }
 
  private:
   std::size_t n_ = 0;
