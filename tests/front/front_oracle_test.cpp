@@ -13,6 +13,7 @@
 
 #include "gsse/front/front_mesher.hpp"
 #include "gsse/front/gift_wrap.hpp"
+#include "gsse/front/kernels.hpp"
 #include "gsse/geometry/predicates.hpp"
 
 using namespace gsse;
@@ -195,6 +196,49 @@ BOOST_AUTO_TEST_CASE(wall_split_gives_the_same_cells) {
     cells.insert(cells.end(), more.begin(), more.end());
   }
   BOOST_TEST((canonical(cells) == cgal_delaunay_2(q)));
+}
+
+BOOST_AUTO_TEST_CASE(blocked_regions_give_the_same_cells) {
+  // wrap() meshes regions of more than front::block_points points piece by piece (walls): still
+  // exactly CGAL's cells, each once, in 3D and 2D
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<point3> p;
+  for (int i = 0; i < 8; ++i) p.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+  for (std::size_t i = 0; i < 3 * front::block_points; ++i) p.push_back({u(rng), u(rng), u(rng)});
+  const auto boundary = lattice_box_boundary(p, 1, [](int x, int y, int z) { return vertex_id(x + 2 * y + 4 * z); });
+  const auto grid = front::make_grid(p);
+  front::wrap_stats st;
+  const auto cells = front::wrap(p, grid, boundary, "cube", &st);
+  BOOST_TEST((canonical(cells) == cgal_delaunay_3(p)));
+  BOOST_TEST(st.cells == cells.size());
+  BOOST_TEST(st.max_front < cells.size() / 20);  // pieces: the front never spans the box
+
+  std::vector<point2> q{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (std::size_t i = 0; i < 2 * front::block_points; ++i) q.push_back({u(rng), u(rng)});
+  const std::vector<std::array<vertex_id, 2>> square{{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  const auto grid2 = front::make_grid(std::span<const point2>(q));
+  BOOST_TEST((canonical(front::wrap(q, grid2, square, "square")) == cgal_delaunay_2(q)));
+}
+
+BOOST_AUTO_TEST_CASE(blocked_lattice_is_valid) {
+  // small blocks on a lattice: the walls run through lattice planes, where every sphere is a tie
+  const int n = 8;
+  std::vector<point3> p;
+  for (int z = 0; z <= n; ++z)
+    for (int y = 0; y <= n; ++y)
+      for (int x = 0; x <= n; ++x) p.push_back({double(x), double(y), double(z)});
+  auto id = [&](int x, int y, int z) { return vertex_id(x + (n + 1) * (y + (n + 1) * z)); };
+  const auto boundary = lattice_box_boundary(p, n, id);
+  const auto grid = front::make_grid(p);
+  const front::volume_kernel k{p};
+  front::gift_wrapper<front::volume_kernel> w(k, grid);
+  const auto cells = w.run_blocked(boundary, "lattice", 0, 40);
+  check_valid_tetrahedralization(p, cells, n * n * n);
+  BOOST_TEST((canonical(cells) == cgal_delaunay_3(p)));
+  // it was split: the cells start with the first wall's, across the plane x = n / 2
+  const auto side = [&](vertex_id v) { return p[v][0] < n / 2.0; };
+  BOOST_TEST(std::count_if(cells[0].begin(), cells[0].end(), side) % 4 != 0);
 }
 
 BOOST_AUTO_TEST_CASE(random_points_in_square_match_cgal) {

@@ -46,6 +46,16 @@ auto run(const K& k, const point_grid<K::grid_dim>& grid, const std::vector<Face
 }
 
 template <class K, class Face>
+auto run_blocked(const K& k, const point_grid<K::grid_dim>& grid, const std::vector<Face>& boundary,
+                 const std::string& label, wrap_stats* stats, std::size_t max_cells) {
+  return run_on(k, grid, boundary, [&](auto& w, const std::vector<Face>& b, bool) {
+    auto cells = w.run_blocked(b, label, max_cells, block_points);
+    if (stats) *stats += w.stats();
+    return cells;
+  });
+}
+
+template <class K, class Face>
 auto run_wall(const K& k, const point_grid<K::grid_dim>& grid, const std::vector<Face>& boundary,
               const std::string& label, std::size_t axis, double x0, std::array<std::vector<Face>, 2>& sides) {
   return run_on(k, grid, boundary, [&](auto& w, const std::vector<Face>& b, bool local) {
@@ -70,12 +80,12 @@ point_grid<2> make_grid(std::span<const point3> pts, int axis, std::span<const v
 std::vector<std::array<vertex_id, 4>> wrap(std::span<const point3> pts, const point_grid<3>& grid,
                                            const std::vector<std::array<vertex_id, 3>>& boundary,
                                            const std::string& label, wrap_stats* stats, std::size_t max_cells) {
-  return run(volume_kernel{pts}, grid, boundary, label, stats, max_cells);
+  return run_blocked(volume_kernel{pts}, grid, boundary, label, stats, max_cells);
 }
 std::vector<std::array<vertex_id, 3>> wrap(std::span<const point2> pts, const point_grid<2>& grid,
                                            const std::vector<std::array<vertex_id, 2>>& boundary,
                                            const std::string& label, wrap_stats* stats, std::size_t max_cells) {
-  return run(plane_kernel{pts}, grid, boundary, label, stats, max_cells);
+  return run_blocked(plane_kernel{pts}, grid, boundary, label, stats, max_cells);
 }
 std::vector<std::array<vertex_id, 4>> wrap_wall(std::span<const point3> pts, const point_grid<3>& grid,
                                                 const std::vector<std::array<vertex_id, 3>>& boundary,

@@ -87,7 +87,7 @@ class gift_wrapper {
   std::vector<cell> run(const std::vector<face>& boundary, const std::string& label, std::size_t max_cells = 0) {
     const bool auto_limit = max_cells == 0;
     std::vector<cell> cells;
-    face_table<D> table(boundary.size() * 8);
+    face_table<D> table(boundary.size());
     // FIFO order keeps the front (open faces) at the surface of the unmeshed region: small, so the
     // face table stays in cache. Depth-first order was measured to grow it to ~40% of the faces.
     std::deque<face> queue;
@@ -150,6 +150,19 @@ class gift_wrapper {
     return cells;
   }
 
+  /// run(), cache-blocked: a region whose bounding box holds more than `block` grid points is
+  /// first split by a wall (run_wall) at the middle of the box's longest side, and each side is
+  /// blocked in turn, depth first. The cells are run()'s (wall cells plus side cells are the
+  /// region's cells), in the order wall, side 0, side 1. A piece's open faces and points then stay
+  /// in the processor's cache, where one front over the whole region probes a face table of
+  /// megabytes (1e6 points: 2e5 open faces) at a cache miss per probe.
+  std::vector<cell> run_blocked(const std::vector<face>& boundary, const std::string& label, std::size_t max_cells,
+                                std::size_t block) {
+    std::vector<cell> cells;
+    blocked(boundary, label, max_cells, block, 0, cells);
+    return cells;
+  }
+
   /// The wall of a split (DeWall): every cell of the region with vertices on both sides of the
   /// plane coordinate[axis] = x0 (a vertex with coordinate < x0 is on side 0, else on side 1),
   /// built by wrapping only faces that cross the plane. The open faces left, which lie entirely
@@ -158,7 +171,7 @@ class gift_wrapper {
   std::vector<cell> run_wall(const std::vector<face>& boundary, const std::string& label, std::size_t axis, double x0,
                              std::array<std::vector<face>, 2>& sides) {
     std::vector<cell> cells;
-    face_table<D> table(boundary.size() * 8);
+    face_table<D> table(boundary.size());
     auto side_of = [&](vertex_id v) { return k_.grid_coord(v)[axis] < x0 ? 0 : 1; };
     auto crosses = [&](const face& f) {
       int n = 0;
@@ -192,6 +205,34 @@ class gift_wrapper {
   const wrap_stats& stats() const { return stats_; }
 
  private:
+  void blocked(const std::vector<face>& b, const std::string& label, std::size_t max_cells, std::size_t block, int depth,
+               std::vector<cell>& out) {
+    if (b.empty()) return;
+    coord lo = k_.grid_coord(b[0][0]), hi = lo;
+    for (const face& f : b)
+      for (auto v : f) {
+        const coord x = k_.grid_coord(v);
+        for (std::size_t a = 0; a < G; ++a) lo[a] = std::min(lo[a], x[a]), hi[a] = std::max(hi[a], x[a]);
+      }
+    std::size_t axis = 0;
+    for (std::size_t a = 1; a < G; ++a)
+      if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
+    const double x0 = 0.5 * (lo[axis] + hi[axis]);
+    std::vector<cell> part;
+    // depth 40: a wall halves the box, far below any grid cell by then
+    if (depth >= 40 || !(lo[axis] < x0 && x0 < hi[axis]) || grid_.count_box(lo, hi) <= block) {
+      part = run(b, label, max_cells);
+    } else {
+      std::array<std::vector<face>, 2> sides;
+      part = run_wall(b, label, axis, x0, sides);
+      out.insert(out.end(), part.begin(), part.end());
+      part.clear();
+      for (const auto& side : sides) blocked(side, label, max_cells, block, depth + 1, out);
+    }
+    out.insert(out.end(), part.begin(), part.end());
+    if (max_cells != 0) check_limit(out, max_cells, label);
+  }
+
   bool defer(const face& f) {
     auto key = f;
     std::sort(key.begin(), key.end());

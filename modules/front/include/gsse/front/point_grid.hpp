@@ -216,6 +216,24 @@ class point_grid {
     });
   }
   std::size_t cell_count() const { return start_.size() - 1; }
+  /// Number of points in the grid cells overlapping [lo, hi]: at least the points in the box.
+  std::size_t count_box(const coord& lo, const coord& hi) const {
+    if (n_ == 0) return 0;
+    const auto a = cell_index(lo), b = cell_index(hi);
+    std::size_t n = 0;
+    auto row = [&](std::array<long, G> first) {  // rows are contiguous in the point array
+      auto last = first;
+      first[0] = a[0], last[0] = b[0];
+      n += start_[linear(last) + 1] - start_[linear(first)];
+    };
+    if constexpr (G == 2) {
+      for (long y = a[1]; y <= b[1]; ++y) row({0, y});
+    } else {
+      for (long z = a[2]; z <= b[2]; ++z)
+        for (long y = a[1]; y <= b[1]; ++y) row({0, y, z});
+    }
+    return n;
+  }
 
   /// Mean edge length of a grid cell over the non-flat axes.
   double mean_step() const {
