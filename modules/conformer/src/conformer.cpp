@@ -525,14 +525,14 @@ class state3 : public state<3> {
       const auto& T = S.triangles[t];
       // double bounding-box prefilter (padded), exact test after
       bool out = false;
-      for (int k = 0; k < 2 && !out; ++k) {
+      for (int a = 0; a < 2 && !out; ++a) {
         double lo = 1e300, hi = -1e300;
         for (auto v : T) {
-          const double c = geometry::project(p[v], S.axis)[static_cast<std::size_t>(k)];
+          const double c = geometry::project(p[v], S.axis)[static_cast<std::size_t>(a)];
           lo = std::min(lo, c), hi = std::max(hi, c);
         }
         const double pad = 1e-9 * (hi - lo) + 1e-300;
-        out = pq[static_cast<std::size_t>(k)] < lo - pad || pq[static_cast<std::size_t>(k)] > hi + pad;
+        out = pq[static_cast<std::size_t>(a)] < lo - pad || pq[static_cast<std::size_t>(a)] > hi + pad;
       }
       if (out) continue;
       if (geometry::orient_projected(p[T[0]], p[T[1]], q, S.axis) >= 0 &&
@@ -718,7 +718,7 @@ class state3 : public state<3> {
         ulo = std::min(ulo, dot(d, u)), uhi = std::max(uhi, dot(d, u));
         vlo = std::min(vlo, dot(d, v)), vhi = std::max(vhi, dot(d, v));
       }
-      auto& mine = seeds[f];
+      std::vector<point3> mine;  // moved into seeds[f] at the end: no shared cache lines meanwhile
       auto at = [&](vertex_id w) -> const point3& { return w < base ? out_.points[w] : mine[w - base]; };
       hash_grid<3> near(o, 0.5 * h);
       for (vertex_id w : vs) near.insert(w, out_.points[w]);
@@ -738,6 +738,7 @@ class state3 : public state<3> {
           near.insert(static_cast<vertex_id>(base + mine.size()), q);
           mine.push_back(q);
         }
+      seeds[f] = std::move(mine);
     }, [&](std::uint32_t f) { return static_cast<double>(boundary_size(f)); });
     for (std::uint32_t f = 0; f < facets_.size(); ++f)
       for (const auto& q : seeds[f]) facets_[f].interior.push_back(add_point(q, {home::facet, f}));

@@ -188,6 +188,7 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
     std::iota(pieces.begin(), pieces.end(), std::size_t{0});
     for_each(execution::par(threads), pieces, [&](std::size_t k) {
       std::vector<std::uint32_t> fs;
+      std::vector<std::pair<std::size_t, std::size_t>> pairs;  // moved into unite[k] at the end
       for (std::size_t run = k * piece; run < std::min(nruns, (k + 1) * piece) && error[k].empty(); ++run) {
         const vertex_id u = ef[runs[run]].u, v = ef[runs[run]].v;
         fs.clear();
@@ -237,9 +238,10 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
               forward |= T[static_cast<std::size_t>(j)] == u && T[static_cast<std::size_t>((j + 1) % 3)] == v;
             return 2 * static_cast<std::size_t>(f) + (forward ? 0 : 1);
           };
-          unite[k].push_back({ccw_side(a), ccw_side(c) ^ 1u});
+          pairs.push_back({ccw_side(a), ccw_side(c) ^ 1u});
         }
       }
+      unite[k] = std::move(pairs);
     });
     for (std::size_t k = 0; k < npieces; ++k) {
       if (!error[k].empty()) throw conform_error(error[k]);

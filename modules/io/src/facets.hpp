@@ -76,9 +76,11 @@ std::vector<outer_facet<D>> outer_facets(const domain<D>& d, const std::string& 
     {
       auto collect = [&](std::size_t k) {
         const auto cells = segs[k].cell_data();
+        std::vector<candidate> mine;  // moved into per[k] at the end: no shared cache lines meanwhile
         for (std::size_t c = 0; c < cells.size(); ++c)
           for (int i = 0; i <= static_cast<int>(D); ++i)
-            if (segs[k].neighbour(static_cast<cell_id>(c), i) == no_cell) per[k].push_back({facet_of(cells[c], i), k});
+            if (segs[k].neighbour(static_cast<cell_id>(c), i) == no_cell) mine.push_back({facet_of(cells[c], i), k});
+        per[k] = std::move(mine);
       };
       std::vector<std::size_t> ks(segs.size());  // the segments are independent
       std::iota(ks.begin(), ks.end(), std::size_t{0});

@@ -291,7 +291,8 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
     std::vector<long> ids(static_cast<std::size_t>(slabs));
     std::iota(ids.begin(), ids.end(), 0l);
     for_each(execution::par(co.threads), ids, [&](long s) {
-      auto& out_s = kept[static_cast<std::size_t>(s)];
+      // filled locally, moved once: neighbouring vectors' headers share cache lines
+      std::vector<point<D>> out_s;
       auto consider = [&](const point<D>& q) {
         if (clear_of_boundary(q) && in_segment(q)) out_s.push_back(q);
       };
@@ -308,6 +309,7 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
           consider(point2{lo[0] + a * (static_cast<double>(i) + 0.0137 + 0.5 * static_cast<double>(s % 2)),
                           lo[1] + rowh * (static_cast<double>(s) + 0.0271)});
       }
+      kept[static_cast<std::size_t>(s)] = std::move(out_s);
     });
     for (const auto& k : kept) out.insert(out.end(), k.begin(), k.end());
   }
