@@ -72,28 +72,37 @@ std::vector<outer_facet<D>> outer_facets(const domain<D>& d, const std::string& 
       std::array<vertex_id, D> f;  // oriented into segment k
       std::size_t k;
     };
-    std::vector<std::vector<candidate>> per(segs.size());  // each segment's, in cell order
-    {
-      auto collect = [&](std::size_t k) {
-        const auto cells = segs[k].cell_data();
-        std::vector<candidate> mine;  // moved into per[k] at the end: no shared cache lines meanwhile
-        for (std::size_t c = 0; c < cells.size(); ++c)
-          for (int i = 0; i <= static_cast<int>(D); ++i)
-            if (segs[k].neighbour(static_cast<cell_id>(c), i) == no_cell) mine.push_back({facet_of(cells[c], i), k});
-        per[k] = std::move(mine);
-      };
-      std::vector<std::size_t> ks(segs.size());  // the segments are independent
-      std::iota(ks.begin(), ks.end(), std::size_t{0});
-      for_each(execution::par(threads), ks, collect, [&](std::size_t k) { return static_cast<double>(segs[k].num_cells()); });
-    }
+    // pieces of each segment's cells, in parallel; concatenated in (segment, cell) order
+    constexpr std::size_t piece = 1 << 15;
+    struct range {
+      std::size_t k, c0, c1;
+    };
+    std::vector<range> ranges;
+    for (std::size_t k = 0; k < segs.size(); ++k)
+      for (std::size_t c = 0; c < segs[k].num_cells(); c += piece)
+        ranges.push_back({k, c, std::min(segs[k].num_cells(), c + piece)});
+    std::vector<std::vector<candidate>> per(ranges.size());
+    for_each(execution::par(threads), ranges, [&](const range& r) {
+      const auto cells = segs[r.k].cell_data();
+      std::vector<candidate> mine;  // moved into per[] at the end: no shared cache lines meanwhile
+      for (std::size_t c = r.c0; c < r.c1; ++c)
+        for (int i = 0; i <= static_cast<int>(D); ++i)
+          if (segs[r.k].neighbour(static_cast<cell_id>(c), i) == no_cell) mine.push_back({facet_of(cells[c], i), r.k});
+      per[static_cast<std::size_t>(&r - ranges.data())] = std::move(mine);
+    });
     std::vector<candidate> all;
     for (auto& v : per) all.insert(all.end(), v.begin(), v.end());
-    std::vector<std::pair<std::array<vertex_id, D>, std::uint32_t>> keys(all.size());
+    using key = std::pair<std::array<vertex_id, D>, std::uint32_t>;
+    std::vector<key> keys(all.size());
     for (std::size_t i = 0; i < all.size(); ++i) {
       keys[i] = {all[i].f, static_cast<std::uint32_t>(i)};
       std::sort(keys[i].first.begin(), keys[i].first.end());
     }
-    std::sort(keys.begin(), keys.end());
+    // halves sorted concurrently, then merged (keys are distinct: the order is the same either way)
+    const auto mid = keys.begin() + static_cast<std::ptrdiff_t>(keys.size() / 2);
+    const std::array<std::pair<decltype(mid), decltype(mid)>, 2> halves{{{keys.begin(), mid}, {mid, keys.end()}}};
+    for_each(execution::par(threads), halves, [](const auto& h) { std::sort(h.first, h.second); });
+    std::inplace_merge(keys.begin(), mid, keys.end());
     std::vector<long> other(all.size(), -1);  // the candidate on the other side, if any
     for (std::size_t i = 0; i < keys.size();) {
       std::size_t j = i + 1;
