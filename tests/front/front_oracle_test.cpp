@@ -65,6 +65,15 @@ std::set<tri> cgal_delaunay_2(const std::vector<point2>& p) {
   return r;
 }
 
+/// The points of the lattice {0..n}^3, x fastest.
+std::vector<point3> lattice_points(int n) {
+  std::vector<point3> p;
+  for (int z = 0; z <= n; ++z)
+    for (int y = 0; y <= n; ++y)
+      for (int x = 0; x <= n; ++x) p.push_back({double(x), double(y), double(z)});
+  return p;
+}
+
 /// Boundary triangles of the box [0,n]^3 whose lattice points are ids of `id`: every boundary
 /// square split along its perturbed-Delaunay diagonal, oriented towards the inside.
 std::vector<tri> lattice_box_boundary(const std::vector<point3>& p, int n, const std::function<vertex_id(int, int, int)>& id) {
@@ -148,10 +157,7 @@ BOOST_AUTO_TEST_CASE(random_points_in_cube_match_cgal) {
 
 BOOST_AUTO_TEST_CASE(lattice_in_cube_is_valid) {
   const int n = 5;
-  std::vector<point3> p;
-  for (int z = 0; z <= n; ++z)
-    for (int y = 0; y <= n; ++y)
-      for (int x = 0; x <= n; ++x) p.push_back({double(x), double(y), double(z)});
+  const auto p = lattice_points(n);
   auto id = [&](int x, int y, int z) { return vertex_id(x + (n + 1) * (y + (n + 1) * z)); };
   const auto boundary = lattice_box_boundary(p, n, id);
   const auto grid = front::make_grid(p);
@@ -224,10 +230,7 @@ BOOST_AUTO_TEST_CASE(blocked_regions_give_the_same_cells) {
 BOOST_AUTO_TEST_CASE(blocked_lattice_is_valid) {
   // small blocks on a lattice: the walls run through lattice planes, where every sphere is a tie
   const int n = 8;
-  std::vector<point3> p;
-  for (int z = 0; z <= n; ++z)
-    for (int y = 0; y <= n; ++y)
-      for (int x = 0; x <= n; ++x) p.push_back({double(x), double(y), double(z)});
+  const auto p = lattice_points(n);
   auto id = [&](int x, int y, int z) { return vertex_id(x + (n + 1) * (y + (n + 1) * z)); };
   const auto boundary = lattice_box_boundary(p, n, id);
   const auto grid = front::make_grid(p);
