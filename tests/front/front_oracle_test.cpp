@@ -65,6 +65,15 @@ std::set<tri> cgal_delaunay_2(const std::vector<point2>& p) {
   return r;
 }
 
+/// The unit cube's 8 corners (ids 0-7, x + 2y + 4z) and n uniform random points inside.
+std::vector<point3> cube_points(std::size_t n, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<point3> p;
+  for (int i = 0; i < 8; ++i) p.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+  for (std::size_t i = 0; i < n; ++i) p.push_back({u(rng), u(rng), u(rng)});
+  return p;
+}
+
 /// The points of the lattice {0..n}^3, x fastest.
 std::vector<point3> lattice_points(int n) {
   std::vector<point3> p;
@@ -108,6 +117,11 @@ std::vector<tri> lattice_box_boundary(const std::vector<point3>& p, int n, const
   return out;
 }
 
+/// The 12 inward triangles of the unit cube of cube_points().
+std::vector<tri> unit_cube_boundary(const std::vector<point3>& p) {
+  return lattice_box_boundary(p, 1, [](int x, int y, int z) { return vertex_id(x + 2 * y + 4 * z); });
+}
+
 void check_valid_tetrahedralization(const std::vector<point3>& p, const std::vector<tet>& cells, double volume) {
   std::map<tri, int> faces;
   double sum = 0;
@@ -140,11 +154,8 @@ void check_valid_tetrahedralization(const std::vector<point3>& p, const std::vec
 BOOST_AUTO_TEST_CASE(random_points_in_cube_match_cgal) {
   for (std::size_t n : {1000u, 10000u}) {
     std::mt19937_64 rng(42 + n);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    std::vector<point3> p;
-    for (int i = 0; i < 8; ++i) p.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
-    for (std::size_t i = 0; i < n; ++i) p.push_back({u(rng), u(rng), u(rng)});
-    const auto boundary = lattice_box_boundary(p, 1, [](int x, int y, int z) { return vertex_id(x + 2 * y + 4 * z); });
+    const auto p = cube_points(n, rng);
+    const auto boundary = unit_cube_boundary(p);
     BOOST_TEST(boundary.size() == 12u);
     const auto grid = front::make_grid(p);
     const auto cells = front::wrap(p, grid, boundary, "cube");
@@ -172,10 +183,8 @@ BOOST_AUTO_TEST_CASE(wall_split_gives_the_same_cells) {
   // are the cells of the whole region (and so CGAL's), in 3D and 2D
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<point3> p;
-  for (int i = 0; i < 8; ++i) p.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
-  for (int i = 0; i < 5000; ++i) p.push_back({u(rng), u(rng), u(rng)});
-  const auto boundary = lattice_box_boundary(p, 1, [](int x, int y, int z) { return vertex_id(x + 2 * y + 4 * z); });
+  const auto p = cube_points(5000, rng);
+  const auto boundary = unit_cube_boundary(p);
   const auto grid = front::make_grid(p);
   for (std::size_t axis : {0u, 2u}) {
     std::array<std::vector<tri>, 2> sides;
@@ -209,10 +218,8 @@ BOOST_AUTO_TEST_CASE(blocked_regions_give_the_same_cells) {
   // exactly CGAL's cells, each once, in 3D and 2D
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<point3> p;
-  for (int i = 0; i < 8; ++i) p.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
-  for (std::size_t i = 0; i < 3 * front::block_points; ++i) p.push_back({u(rng), u(rng), u(rng)});
-  const auto boundary = lattice_box_boundary(p, 1, [](int x, int y, int z) { return vertex_id(x + 2 * y + 4 * z); });
+  const auto p = cube_points(3 * front::block_points, rng);
+  const auto boundary = unit_cube_boundary(p);
   const auto grid = front::make_grid(p);
   front::wrap_stats st;
   const auto cells = front::wrap(p, grid, boundary, "cube", &st);

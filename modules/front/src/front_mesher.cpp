@@ -35,21 +35,12 @@ auto run_on(const K& k, const point_grid<K::grid_dim>& grid, const std::vector<F
   return go(w, boundary, false);
 }
 
+/// One front, or (block > 0) pieces of at most about `block` points (gift_wrapper::run_blocked).
 template <class K, class Face>
 auto run(const K& k, const point_grid<K::grid_dim>& grid, const std::vector<Face>& boundary, const std::string& label,
-         wrap_stats* stats, std::size_t max_cells) {
+         wrap_stats* stats, std::size_t max_cells, std::size_t block) {
   return run_on(k, grid, boundary, [&](auto& w, const std::vector<Face>& b, bool) {
-    auto cells = w.run(b, label, max_cells);
-    if (stats) *stats += w.stats();
-    return cells;
-  });
-}
-
-template <class K, class Face>
-auto run_blocked(const K& k, const point_grid<K::grid_dim>& grid, const std::vector<Face>& boundary,
-                 const std::string& label, wrap_stats* stats, std::size_t max_cells) {
-  return run_on(k, grid, boundary, [&](auto& w, const std::vector<Face>& b, bool) {
-    auto cells = w.run_blocked(b, label, max_cells, block_points);
+    auto cells = block ? w.run_blocked(b, label, max_cells, block) : w.run(b, label, max_cells);
     if (stats) *stats += w.stats();
     return cells;
   });
@@ -80,12 +71,12 @@ point_grid<2> make_grid(std::span<const point3> pts, int axis, std::span<const v
 std::vector<std::array<vertex_id, 4>> wrap(std::span<const point3> pts, const point_grid<3>& grid,
                                            const std::vector<std::array<vertex_id, 3>>& boundary,
                                            const std::string& label, wrap_stats* stats, std::size_t max_cells) {
-  return run_blocked(volume_kernel{pts}, grid, boundary, label, stats, max_cells);
+  return run(volume_kernel{pts}, grid, boundary, label, stats, max_cells, block_points);
 }
 std::vector<std::array<vertex_id, 3>> wrap(std::span<const point2> pts, const point_grid<2>& grid,
                                            const std::vector<std::array<vertex_id, 2>>& boundary,
                                            const std::string& label, wrap_stats* stats, std::size_t max_cells) {
-  return run_blocked(plane_kernel{pts}, grid, boundary, label, stats, max_cells);
+  return run(plane_kernel{pts}, grid, boundary, label, stats, max_cells, block_points);
 }
 std::vector<std::array<vertex_id, 4>> wrap_wall(std::span<const point3> pts, const point_grid<3>& grid,
                                                 const std::vector<std::array<vertex_id, 3>>& boundary,
@@ -103,7 +94,7 @@ std::vector<std::array<vertex_id, 3>> wrap_facet(std::span<const point3> pts, in
                                                  const std::vector<std::array<vertex_id, 2>>& boundary,
                                                  const std::string& label, wrap_stats* stats, std::size_t max_cells,
                                                  bool coplanar) {
-  return run(facet_kernel{pts, axis, coplanar}, grid, boundary, label, stats, max_cells);
+  return run(facet_kernel{pts, axis, coplanar}, grid, boundary, label, stats, max_cells, 0);
 }
 
 }  // namespace gsse::front

@@ -32,7 +32,7 @@ void write_lines(std::ostream& o, std::size_t n, unsigned threads, Line&& line) 
     b.clear();
     for (std::size_t i = k * chunk, end = std::min(n, i + chunk); i < end; ++i) line(i, b);
   };
-  threads = static_cast<unsigned>(std::clamp<std::size_t>(threads, 1, chunks));
+  threads = static_cast<unsigned>(std::min<std::size_t>(std::max(1u, threads), std::max<std::size_t>(1, chunks)));
   if (threads == 1) {
     std::string b;
     for (std::size_t k = 0; k < chunks; ++k) {

@@ -218,18 +218,12 @@ class gift_wrapper {
     for (std::size_t a = 1; a < G; ++a)
       if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
     const double x0 = 0.5 * (lo[axis] + hi[axis]);
-    std::vector<cell> part;
     // depth 40: a wall halves the box, far below any grid cell by then
-    if (depth >= 40 || !(lo[axis] < x0 && x0 < hi[axis]) || grid_.count_box(lo, hi) <= block) {
-      part = run(b, label, max_cells);
-    } else {
-      std::array<std::vector<face>, 2> sides;
-      part = run_wall(b, label, axis, x0, sides);
-      out.insert(out.end(), part.begin(), part.end());
-      part.clear();
-      for (const auto& side : sides) blocked(side, label, max_cells, block, depth + 1, out);
-    }
+    const bool leaf = depth >= 40 || !(lo[axis] < x0 && x0 < hi[axis]) || grid_.count_box(lo, hi) <= block;
+    std::array<std::vector<face>, 2> sides;
+    const auto part = leaf ? run(b, label, max_cells) : run_wall(b, label, axis, x0, sides);
     out.insert(out.end(), part.begin(), part.end());
+    for (const auto& side : sides) blocked(side, label, max_cells, block, depth + 1, out);
     if (max_cells != 0) check_limit(out, max_cells, label);
   }
 
