@@ -314,6 +314,9 @@ BOOST_AUTO_TEST_CASE(failed_write_leaves_no_file) {
   BOOST_CHECK_THROW(io::write_atomically(dir.file("kept.txt"), [](std::ostream&) { throw std::runtime_error("x"); }),
                     std::runtime_error);
   BOOST_TEST(test::slurp_file(dir.file("kept.txt")) == "old");
+  // ... and a complete one replaces it, leaving nothing beside it (the old file is moved aside first)
+  io::write_atomically(dir.file("kept.txt"), [](std::ostream& o) { o << "new"; });
+  BOOST_TEST(test::slurp_file(dir.file("kept.txt")) == "new");
   std::size_t files = 0;
   for ([[maybe_unused]] auto& e : std::filesystem::directory_iterator(dir.path)) ++files;
   BOOST_TEST(files == 1u);  // only kept.txt: no output, no temporaries

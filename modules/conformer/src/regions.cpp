@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <filesystem>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <map>
 #include <numeric>
 
 #include "gsse/geometry/predicates.hpp"
 #include "gsse/traversal/for_each.hpp"
+#include "gsse/traversal/parallel_sort.hpp"
 
 namespace gsse::conformer {
 namespace {
@@ -173,7 +175,7 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
         const auto [u, v] = std::minmax(b.faces[f][static_cast<std::size_t>(k)], b.faces[f][static_cast<std::size_t>((k + 1) % 3)]);
         ef.push_back({u, v, f});
       }
-    std::sort(ef.begin(), ef.end());
+    gsse::stable_sort(execution::par(threads), ef.begin(), ef.end());  // entries are distinct
     std::vector<std::size_t> runs;  // starts of the runs, and the end
     for (std::size_t i = 0; i < ef.size(); ++i)
       if (i == 0 || ef[i].u != ef[i - 1].u || ef[i].v != ef[i - 1].v) runs.push_back(i);
@@ -292,26 +294,49 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
     const std::size_t root = shells.find(s);
     if (!done[root]) done[root] = 1, probes.push_back(s);
   }
-  // each probe casts rays through every face: in parallel, united in shell order
-  std::vector<long> hits(probes.size());
-  std::vector<std::size_t> order(probes.size());
+  // every ray crosses every face: the probes, region points and hole points cast theirs in
+  // parallel; the results (or errors) are then used in this order, as if cast one by one
+  const std::size_t nr = p.regions.size(), nh = p.holes.size();
+  auto region_what = [&](std::size_t r) {
+    return p.source + ": region point " + std::to_string(r + 1) + " (segment " + std::to_string(p.regions[r].number) + ")";
+  };
+  auto hole_what = [&](std::size_t h) { return p.source + ": hole point " + std::to_string(h + 1); };
+  std::vector<long> hits(probes.size() + nr + nh);
+  std::vector<std::exception_ptr> failed(hits.size());
+  std::vector<std::size_t> order(hits.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   for_each(execution::par(threads), order, [&](std::size_t i) {
-    const std::size_t s = probes[i], f = s / 2;
-    point<D> n = face_normal(b, f);
-    if (s % 2) n = -1.0 * n;
-    hits[i] = first_side(b, face_centre(b, f), (1.0 / std::sqrt(dot(n, n))) * n, static_cast<long>(f), len,
-                         p.source + ": probe of face " + std::to_string(f + 1));
+    try {
+      if (i < probes.size()) {
+        const std::size_t s = probes[i], f = s / 2;
+        point<D> n = face_normal(b, f);
+        if (s % 2) n = -1.0 * n;
+        hits[i] = first_side(b, face_centre(b, f), (1.0 / std::sqrt(dot(n, n))) * n, static_cast<long>(f), len,
+                             p.source + ": probe of face " + std::to_string(f + 1));
+      } else if (const std::size_t r = i - probes.size(); r < nr) {
+        hits[i] = first_side(b, p.regions[r].at, point<D>{}, -1, len, region_what(r));
+      } else {
+        hits[i] = first_side(b, p.holes[r - nr], point<D>{}, -1, len, hole_what(r - nr));
+      }
+    } catch (...) {
+      failed[i] = std::current_exception();
+    }
   });
-  for (std::size_t i = 0; i < probes.size(); ++i)
-    cells.unite(shells.find(probes[i]), hits[i] < 0 ? unbounded : shells.find(static_cast<std::size_t>(hits[i])));
+  auto hit_of = [&](std::size_t i) {
+    if (failed[i]) std::rethrow_exception(failed[i]);
+    return hits[i];
+  };
+  for (std::size_t i = 0; i < probes.size(); ++i) {
+    const long hit = hit_of(i);
+    cells.unite(shells.find(probes[i]), hit < 0 ? unbounded : shells.find(static_cast<std::size_t>(hit)));
+  }
   // region and hole points
   labelling out;
   std::map<std::size_t, int> cell_region;  // cell root -> region index, or exterior for holes
-  for (std::size_t r = 0; r < p.regions.size(); ++r) {
+  for (std::size_t r = 0; r < nr; ++r) {
     const auto& g = p.regions[r];
-    const std::string what = p.source + ": region point " + std::to_string(r + 1) + " (segment " + std::to_string(g.number) + ")";
-    const long hit = first_side(b, g.at, point<D>{}, -1, len, what);
+    const std::string what = region_what(r);
+    const long hit = hit_of(probes.size() + r);
     if (hit < 0 || cells.find(shells.find(static_cast<std::size_t>(hit))) == cells.find(unbounded))
       throw conform_error(what + " lies outside the domain");
     const std::size_t cell = cells.find(shells.find(static_cast<std::size_t>(hit)));
@@ -327,9 +352,8 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
       throw conform_error(what + " shares its region with segment " +
                           (it->second < 0 ? std::string("hole") : std::to_string(out.regions[static_cast<std::size_t>(it->second)].number)));
   }
-  for (std::size_t h = 0; h < p.holes.size(); ++h) {
-    const std::string what = p.source + ": hole point " + std::to_string(h + 1);
-    const long hit = first_side(b, p.holes[h], point<D>{}, -1, len, what);
+  for (std::size_t h = 0; h < nh; ++h) {
+    const long hit = hit_of(probes.size() + nr + h);
     if (hit < 0) continue;  // outside anyway
     cell_region[cells.find(shells.find(static_cast<std::size_t>(hit)))] = exterior;
   }

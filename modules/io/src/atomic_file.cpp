@@ -39,9 +39,23 @@ void atomic_file::commit() {
   out_.close();
   if (!ok || out_.fail()) throw io_error::whole(target_, "write failed (disk full?)");
   std::error_code ec;
+  // An existing target is first moved aside, so that the final rename does not replace a file:
+  // ext4 (auto_da_alloc) writes the new file's blocks out synchronously inside a rename that
+  // replaces one, which made the commit of a 20 MB mesh cost 20-30 ms instead of 2.
+  std::string aside;
+  if (std::filesystem::is_regular_file(std::filesystem::symlink_status(target_, ec))) {
+    aside = temp_ + ".old";
+    std::filesystem::rename(target_, aside, ec);
+    if (ec) aside.clear();  // e.g. removed meanwhile: rename over whatever is there
+  }
   std::filesystem::rename(temp_, target_, ec);
-  if (ec) throw io_error::whole(target_, "cannot rename temporary file: " + ec.message());
+  if (ec) {
+    std::error_code ignored;
+    if (!aside.empty()) std::filesystem::rename(aside, target_, ignored);  // put the old file back
+    throw io_error::whole(target_, "cannot rename temporary file: " + ec.message());
+  }
   done_ = true;
+  if (!aside.empty()) std::filesystem::remove(aside, ec);  // a leftover is harmless; nothing to report
 }
 
 void write_atomically(const std::string& target, const std::function<void(std::ostream&)>& body) {

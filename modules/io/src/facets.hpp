@@ -12,6 +12,7 @@
 
 #include "gsse/container/domain.hpp"
 #include "gsse/traversal/for_each.hpp"
+#include "gsse/traversal/parallel_sort.hpp"
 #include "gsse/io/error.hpp"
 
 namespace gsse::io::detail {
@@ -98,11 +99,7 @@ std::vector<outer_facet<D>> outer_facets(const domain<D>& d, const std::string& 
       keys[i] = {all[i].f, static_cast<std::uint32_t>(i)};
       std::sort(keys[i].first.begin(), keys[i].first.end());
     }
-    // halves sorted concurrently, then merged (keys are distinct: the order is the same either way)
-    const auto mid = keys.begin() + static_cast<std::ptrdiff_t>(keys.size() / 2);
-    const std::array<std::pair<decltype(mid), decltype(mid)>, 2> halves{{{keys.begin(), mid}, {mid, keys.end()}}};
-    for_each(execution::par(threads), halves, [](const auto& h) { std::sort(h.first, h.second); });
-    std::inplace_merge(keys.begin(), mid, keys.end());
+    gsse::stable_sort(execution::par(threads), keys.begin(), keys.end());
     std::vector<long> other(all.size(), -1);  // the candidate on the other side, if any
     for (std::size_t i = 0; i < keys.size();) {
       std::size_t j = i + 1;

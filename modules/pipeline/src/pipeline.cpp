@@ -1,5 +1,6 @@
 #include "gsse/pipeline/pipeline.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <exception>
@@ -18,6 +19,7 @@
 #include "gsse/rules/defaults.hpp"
 #include "gsse/topology/incidence.hpp"
 #include "gsse/traversal/for_each.hpp"
+#include "gsse/traversal/parallel_sort.hpp"
 
 namespace gsse::pipeline {
 namespace {
@@ -69,14 +71,17 @@ std::vector<int> split_depths(const std::vector<point<D>>& pts, const std::vecto
   return depth;
 }
 
+template <std::size_t D>
+using pieces_t = std::vector<std::vector<std::vector<cell_t<D>>>>;  // region -> its cells, in pieces
+
 /// Cells of every region, meshed in parallel with the points `pts` (b.points, possibly extended).
 /// Large regions are first split by walls across the longest side of their bounding box; the
 /// pieces are then meshed as regions of their own. Pieces are tasks taken by free threads, largest
-/// first (walls before all, since they make the next tasks); each region's cells are concatenated
-/// by level of the split tree, then by position within it, whatever the threads did.
+/// first (walls before all, since they make the next tasks); each region's pieces are ordered by
+/// level of the split tree, then by position within it, whatever the threads did.
 template <std::size_t D>
-std::vector<std::vector<cell_t<D>>> wrap_all(const std::vector<point<D>>& pts, const conformer::boundary<D>& b,
-                                             const conformer::labelling& l, unsigned threads) {
+pieces_t<D> wrap_pieces(const std::vector<point<D>>& pts, const conformer::boundary<D>& b,
+                        const conformer::labelling& l, unsigned threads) {
   using face = std::array<vertex_id, D>;
   const auto grid = front::make_grid(std::span<const point<D>>(pts));
   std::vector<std::vector<face>> bnd(l.regions.size());
@@ -150,11 +155,23 @@ std::vector<std::vector<cell_t<D>>> wrap_all(const std::vector<point<D>>& pts, c
     worker();
   }
   if (error) std::rethrow_exception(error);
-  std::vector<std::vector<cell_t<D>>> cells(l.regions.size());
+  pieces_t<D> cells(l.regions.size());
   for (std::size_t r = 0; r < done.size(); ++r) {
     auto& rs = done[r];
     std::sort(rs.begin(), rs.end(), [](const result& x, const result& y) { return std::pair(x.level, x.index) < std::pair(y.level, y.index); });
-    for (auto& x : rs) cells[r].insert(cells[r].end(), x.cells.begin(), x.cells.end());
+    for (auto& x : rs) cells[r].push_back(std::move(x.cells));
+  }
+  return cells;
+}
+
+/// wrap_pieces with each region's pieces concatenated.
+template <std::size_t D>
+std::vector<std::vector<cell_t<D>>> wrap_all(const std::vector<point<D>>& pts, const conformer::boundary<D>& b,
+                                             const conformer::labelling& l, unsigned threads) {
+  std::vector<std::vector<cell_t<D>>> cells;
+  for (auto& ps : wrap_pieces(pts, b, l, threads)) {
+    auto& c = cells.emplace_back();
+    for (auto& x : ps) c.insert(c.end(), x.begin(), x.end());
   }
   return cells;
 }
@@ -163,7 +180,7 @@ std::vector<std::vector<cell_t<D>>> wrap_all(const std::vector<point<D>>& pts, c
 /// created points are appended to `pts` (a copy of b.points) region by region, then every region
 /// is meshed again with all of them.
 template <std::size_t D>
-std::vector<std::vector<cell_t<D>>> wrap_all_creating(std::vector<point<D>>& pts, const conformer::boundary<D>& b,
+pieces_t<D> wrap_all_creating(std::vector<point<D>>& pts, const conformer::boundary<D>& b,
                                                       const conformer::labelling& l, unsigned threads,
                                                       const front::creation_options& co, front::creation_stats& cs) {
   pts = b.points;
@@ -185,7 +202,7 @@ std::vector<std::vector<cell_t<D>>> wrap_all_creating(std::vector<point<D>>& pts
     cs += st[r];
     pts.insert(pts.end(), created[r].begin(), created[r].end());
   }
-  return wrap_all(pts, b, l, threads);
+  return wrap_pieces(pts, b, l, threads);
 }
 
 /// True if q lies in the closed cell c (on its boundary counts: a point on an inner face of the
@@ -320,7 +337,7 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
       ++dropped;
   }
   // no duplicates: a cloud point may repeat a lattice point or another cloud point
-  std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return lex_less(x, y); });
+  gsse::stable_sort(execution::par(co.threads), out.begin(), out.end(), [](const auto& x, const auto& y) { return lex_less(x, y); });
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
@@ -330,34 +347,53 @@ domain<D> mesh_segments<D>::operator()(const conformer::boundary<D>& b, const co
                                        unsigned threads) const {
   std::vector<point<D>> extended;
   front::creation_stats st;
-  const auto cells = create ? wrap_all_creating(extended, b, l, threads, *create, st) : wrap_all(b.points, b, l, threads);
+  const auto cells = create ? wrap_all_creating(extended, b, l, threads, *create, st) : wrap_pieces(b.points, b, l, threads);
   if (create && created) *created = st;
   const auto& pts = create ? extended : b.points;
-  // compact the points actually used, keeping their order
+  // every piece of every region is a task: mark the points used, then copy the cells renumbered
+  struct task {
+    std::size_t region, piece, offset;  // offset: of the piece's cells in its segment
+  };
+  std::vector<task> tasks;
+  std::vector<std::size_t> total(cells.size(), 0);
+  for (std::size_t r = 0; r < cells.size(); ++r)
+    for (std::size_t k = 0; k < cells[r].size(); ++k) {
+      tasks.push_back({r, k, total[r]});
+      total[r] += cells[r][k].size();
+    }
+  auto cost = [&](const task& t) { return static_cast<double>(cells[t.region][t.piece].size()); };
   std::vector<vertex_id> remap(pts.size(), no_vertex);
-  for (const auto& cs : cells)
-    for (const auto& c : cs)
-      for (auto v : c) remap[v] = 0;
+  for_each(execution::par(threads), tasks, [&](const task& t) {
+    // every writer stores the same value: relaxed atomic stores keep that race-free
+    for (const auto& c : cells[t.region][t.piece])
+      for (auto v : c) std::atomic_ref<vertex_id>(remap[v]).store(0, std::memory_order_relaxed);
+  }, cost);
+  // compact the points actually used, keeping their order
   domain<D> d;
   vertex_id next = 0;
   for (vertex_id v = 0; v < pts.size(); ++v)
-    if (remap[v] == 0) {
-      remap[v] = next++;
-      d.add_point(pts[v]);
-    }
+    if (remap[v] == 0) remap[v] = next++;
+  d.mutable_points().reserve(next);
+  for (vertex_id v = 0; v < pts.size(); ++v)
+    if (remap[v] != no_vertex) d.mutable_points().push_back(pts[v]);
   std::vector<std::size_t> order(l.regions.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](auto x, auto y) { return l.regions[x].number < l.regions[y].number; });
+  std::vector<std::vector<cell_t<D>>*> out(cells.size());
   for (std::size_t r : order) {
     auto& s = d.add_segment(l.regions[r].name, l.regions[r].number);
-    s.reserve(cells[r].size());
-    for (auto c : cells[r]) {
-      for (auto& v : c) v = remap[v];
-      s.add_cell(c);
-    }
+    out[r] = &s.mutable_cells();
+    out[r]->resize(total[r]);
   }
+  for_each(execution::par(threads), tasks, [&](const task& t) {
+    auto* to = out[t.region]->data() + t.offset;
+    for (auto c : cells[t.region][t.piece]) {
+      for (auto& v : c) v = remap[v];
+      *to++ = c;
+    }
+  }, cost);
   d.sync_slots();
-  for (auto& s : d.segments()) s.finalize(threads);  // neighbours and vertex-to-cell incidence for users
+  for (auto& s : d.segments()) s.finalize(threads);
   return d;
 }
 

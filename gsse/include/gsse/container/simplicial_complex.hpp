@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <numeric>
+#include <utility>
 #include <span>
 #include <stdexcept>
 #include <vector>
@@ -41,10 +43,10 @@ class simplicial_complex {
 
   bool finalized() const { return finalized_; }
   /// Builds neighbours and the vertex-to-cell index. Throws if a facet is shared by more than two
-  /// cells (not a manifold complex). `threads` share the neighbour matching by vertex ranges; the
-  /// result is the same for any number.
+  /// cells (not a manifold complex). `threads` share the vertex index (by cell ranges) and the
+  /// neighbour matching (by vertex ranges); the result is the same for any number.
   void finalize(unsigned threads = 1) {
-    build_vertex_index();
+    build_vertex_index(std::max(1u, threads));
     build_neighbours(std::max(1u, threads));
     finalized_ = true;
   }
@@ -125,21 +127,48 @@ class simplicial_complex {
       }
     }
   }
-  void build_vertex_index() {
-    vertex_id extent = 0;
-    for (const auto& c : cells_)
-      for (auto v : c) extent = std::max(extent, v + 1);
-    vstart_.assign(static_cast<std::size_t>(extent) + 1, 0);
-    for (const auto& c : cells_)
-      for (auto v : c) ++vstart_[v + 1];
-    for (std::size_t i = 1; i < vstart_.size(); ++i) vstart_[i] += vstart_[i - 1];
-    vcells_.resize(vstart_.back());
-    std::vector<std::size_t> fill(vstart_.begin(), vstart_.end() - 1);
-    for (cell_id c = 0; c < cells_.size(); ++c)
-      for (auto v : cells_[c]) vcells_[fill[v]++] = c;
+  /// CSR index: the cells of each vertex in increasing order. Cell ranges are counted and filled by
+  /// `threads` concurrently; a vertex's entries from lower ranges come first, so the index is the
+  /// same for any number of threads.
+  void build_vertex_index(unsigned threads) {
+    const std::size_t pieces = std::clamp<std::size_t>(cells_.size() / 16384, 1, threads);
+    std::vector<std::size_t> cut(pieces + 1), ids(pieces);
+    for (std::size_t t = 0; t <= pieces; ++t) cut[t] = cells_.size() * t / pieces;
+    std::iota(ids.begin(), ids.end(), std::size_t{0});
+    auto run = [&](auto&& body) {
+      if (pieces == 1) return body(std::size_t{0});
+      for_each(execution::par(static_cast<unsigned>(pieces)), ids, body);
+    };
+    std::vector<vertex_id> extents(pieces, 0);
+    run([&](std::size_t t) {
+      vertex_id e = 0;
+      for (std::size_t c = cut[t]; c < cut[t + 1]; ++c)
+        for (auto v : cells_[c]) e = std::max(e, v + 1);
+      extents[t] = e;
+    });
+    const std::size_t extent = *std::max_element(extents.begin(), extents.end());
+    // count[t][v]: cells of piece t at v; turned into piece t's first slot at v
+    std::vector<std::vector<std::size_t>> count(pieces);
+    run([&](std::size_t t) {
+      std::vector<std::size_t> n(extent, 0);
+      for (std::size_t c = cut[t]; c < cut[t + 1]; ++c)
+        for (auto v : cells_[c]) ++n[v];
+      count[t] = std::move(n);
+    });
+    vstart_.assign(extent + 1, 0);
     used_.clear();
-    for (vertex_id v = 0; v < extent; ++v)
-      if (vstart_[v + 1] > vstart_[v]) used_.push_back(v);
+    for (std::size_t v = 0; v < extent; ++v) {
+      std::size_t at = vstart_[v];
+      for (auto& n : count) at += std::exchange(n[v], at);
+      vstart_[v + 1] = at;
+      if (at > vstart_[v]) used_.push_back(static_cast<vertex_id>(v));
+    }
+    vcells_.resize(vstart_.back());
+    run([&](std::size_t t) {
+      auto& fill = count[t];
+      for (std::size_t c = cut[t]; c < cut[t + 1]; ++c)
+        for (auto v : cells_[c]) vcells_[fill[v]++] = static_cast<cell_id>(c);
+    });
   }
 
   std::vector<cell_type> cells_;
