@@ -117,30 +117,30 @@ class state {
 
   /// Vertices on the diametral sphere of (a,b) or strictly inside: returns the encroacher with the
   /// smallest id (deterministic), or no_vertex.
-  vertex_id segment_encroacher(vertex_id a, vertex_id b) {
+  vertex_id segment_encroacher(vertex_id a, vertex_id b, std::vector<vertex_id>& ties) const {
     const auto& p = out_.points;
     const auto [c, r] = detail::diametral_bound(p[a], p[b]);
     point<D> lo, hi;
     for (std::size_t k = 0; k < D; ++k) lo[k] = c[k] - r, hi[k] = c[k] + r;
     vertex_id strict = no_vertex;
-    ties_.clear();
+    ties.clear();
     const double r2 = r * r;
     grid_.visit(lo, hi, [&](vertex_id y) {
       if (y == a || y == b || (strict != no_vertex && y > strict)) return;
       if (squared_distance(c, p[y]) > r2) return;  // double prefilter, padded
       const int s = geometry::in_diametral(p[a], p[b], p[y]);
       if (s > 0) strict = y;
-      else if (s == 0) ties_.push_back(y);
+      else if (s == 0) ties.push_back(y);
     });
     if (strict != no_vertex) return strict;
-    if (ties_.empty()) return no_vertex;
-    std::sort(ties_.begin(), ties_.end());
+    if (ties.empty()) return no_vertex;
+    std::sort(ties.begin(), ties.end());
     bool ok;
     if constexpr (D == 2)
-      ok = detail::edge_in_cocircular_dt(p, a, b, ties_);
+      ok = detail::edge_in_cocircular_dt(p, a, b, ties);
     else
-      ok = detail::edge_in_cospherical_dt(p, a, b, ties_);
-    return ok ? no_vertex : ties_.front();
+      ok = detail::edge_in_cospherical_dt(p, a, b, ties);
+    return ok ? no_vertex : ties.front();
   }
 
   /// PLC edges sharing a vertex with edge e, by shared vertex.
@@ -257,11 +257,25 @@ class state {
   /// Phase A: split subsegments until none is encroached. Returns the number of splits.
   std::size_t conform_segments() {
     std::size_t splits = 0;
+    std::vector<vertex_id> ties;
+    std::vector<std::uint32_t> ids(edges_.size());
+    std::iota(ids.begin(), ids.end(), 0u);
     for (bool again = true; again;) {
       again = false;
-      for (std::uint32_t e = 0; e < edges_.size(); ++e)
+      // which edges have an encroached subsegment, checked in parallel: the sequential pass below
+      // skips the others as long as no split has added a point that might encroach them
+      std::vector<char> encroached(edges_.size(), 0);
+      for_each(execution::par(opt_.threads), ids, [&](std::uint32_t e) {
+        std::vector<vertex_id> scratch;
+        const auto& ch = edges_[e].chain;
+        for (std::size_t i = 0; i + 1 < ch.size() && !encroached[e]; ++i)
+          encroached[e] = segment_encroacher(ch[i], ch[i + 1], scratch) != no_vertex;
+      }, [&](std::uint32_t e) { return static_cast<double>(edges_[e].chain.size()); });
+      const std::size_t before = out_.points.size();
+      for (std::uint32_t e = 0; e < edges_.size(); ++e) {
+        if (!encroached[e] && out_.points.size() == before) continue;
         for (std::size_t i = 0; i + 1 < edges_[e].chain.size();) {
-          const vertex_id y = segment_encroacher(edges_[e].chain[i], edges_[e].chain[i + 1]);
+          const vertex_id y = segment_encroacher(edges_[e].chain[i], edges_[e].chain[i + 1], ties);
           if (y == no_vertex) {
             ++i;
             continue;
@@ -270,6 +284,7 @@ class state {
           ++splits;
           again = true;
         }
+      }
     }
     return splits;
   }
@@ -285,7 +300,6 @@ class state {
   std::vector<plc_edge> edges_;
   std::map<std::pair<vertex_id, vertex_id>, std::uint32_t> edge_index_;
   std::map<vertex_id, std::vector<std::uint32_t>> vertex_edges_;
-  std::vector<vertex_id> ties_;
   // GSSE_CONFORM_TRACE=1: per round, the number of splits and which rule/action fired how often
   bool trace_on_ = std::getenv("GSSE_CONFORM_TRACE") != nullptr;
   std::map<std::string, std::size_t> trace_;
@@ -545,11 +559,27 @@ class state3 : public state<3> {
 
   /// A subsegment of facet f whose diametral ball holds q strictly: (edge, index) or none.
   std::optional<std::pair<std::uint32_t, std::size_t>> encroached_subsegment(std::uint32_t f, const point3& q) const {
+    const auto& p = out_.points;
     for (const auto& loop : facets_[f].loops)
       for (auto [e, fw] : loop) {
         const auto& ch = edges_[e].chain;
-        for (std::size_t i = 0; i + 1 < ch.size(); ++i) {
-          const point3 &a = out_.points[ch[i]], &b = out_.points[ch[i + 1]];
+        // A closed diametral ball holds q only if q projects into its subsegment, and the chain
+        // runs along its edge: only the subsegments about q's projection, found by bisection,
+        // are tested. The window's margin is 1e-9 of the edge, far above rounding (a filter:
+        // the exact test decides).
+        const point3 o = p[ch.front()], d = p[ch.back()] - o;
+        const double margin = 1e-9 * dot(d, d), at = dot(q - o, d);
+        auto along = [&](std::size_t k) { return dot(p[ch[k]] - o, d); };
+        std::size_t first = 0, last = ch.size() - 1;  // first subsegment whose far end is not before q
+        while (first < last) {
+          const std::size_t mid = (first + last) / 2;
+          if (along(mid + 1) < at - margin)
+            first = mid + 1;
+          else
+            last = mid;
+        }
+        for (std::size_t i = first; i + 1 < ch.size() && along(i) <= at + margin; ++i) {
+          const point3 &a = p[ch[i]], &b = p[ch[i + 1]];
           const auto [c, r] = detail::diametral_bound(a, b);
           if (squared_distance(c, q) > r * r) continue;  // double prefilter, padded
           if (geometry::in_diametral(a, b, q) >= 0) return std::pair{e, i};
@@ -623,7 +653,7 @@ class state3 : public state<3> {
     const auto& p = out_.points;
     // points inserted in this phase, anywhere: a triangle whose circumball holds one is stale
     // until its facet is triangulated again next round
-    hash_grid<3> fresh(p[0], grid_h_);
+    hash_grid<3> fresh(p[0], 2 * grid_h_);  // few points: larger cells, fewer lookups per ball
     bool any_fresh = false;
     auto note = [&](vertex_id v) {
       fresh.insert(v, p[v]);
