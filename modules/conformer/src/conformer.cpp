@@ -42,6 +42,32 @@ struct plc_edge {
   std::vector<std::uint32_t> facets;  // 3D: facets containing the edge
 };
 
+/// Points inserted since some moment: an element checked clean before can be encroached only by
+/// one of them. Their bounding box rules out most balls without a grid lookup (the later rounds
+/// insert a handful of points, and every element is asked).
+template <std::size_t D>
+struct recent_points {
+  hash_grid<D> grid;
+  point<D> lo{}, hi{};
+  bool empty = true;
+  recent_points(const point<D>& origin, double cell) : grid(origin, cell) {}
+  void add(vertex_id v, const point<D>& q) {
+    grid.insert(v, q);
+    for (std::size_t k = 0; k < D; ++k) lo[k] = empty ? q[k] : std::min(lo[k], q[k]), hi[k] = empty ? q[k] : std::max(hi[k], q[k]);
+    empty = false;
+  }
+  /// False if none lies within r of c (the box test; true means "look in the grid").
+  bool near(const point<D>& c, double r) const {
+    if (empty) return false;
+    double d2 = 0;
+    for (std::size_t k = 0; k < D; ++k) {
+      const double x = std::clamp(c[k], lo[k], hi[k]) - c[k];
+      d2 += x * x;
+    }
+    return d2 <= r * r;
+  }
+};
+
 /// Conformer state shared by 2D and 3D.
 template <std::size_t D>
 class state {
@@ -260,16 +286,34 @@ class state {
     std::vector<vertex_id> ties;
     std::vector<std::uint32_t> ids(edges_.size());
     std::iota(ids.begin(), ids.end(), 0u);
-    for (bool again = true; again;) {
+    for (bool again = true, first = true; again; first = false) {
       again = false;
       // which edges have an encroached subsegment, checked in parallel: the sequential pass below
-      // skips the others as long as no split has added a point that might encroach them
+      // skips the others as long as no split has added a point that might encroach them. On the
+      // first pass, a subsegment between points older than the last call's end was clean then:
+      // only a point inserted since can encroach it (closed ball: a new tie counts)
+      const std::size_t upto = first ? segments_clean_upto_ : 0;
+      const auto& p = out_.points;
+      recent_points<D> recent(p[0], grid_h_);
+      for (std::size_t v = upto; upto > 0 && v < p.size(); ++v) recent.add(static_cast<vertex_id>(v), p[v]);
       std::vector<char> encroached(edges_.size(), 0);
       for_each(execution::par(opt_.threads), ids, [&](std::uint32_t e) {
         std::vector<vertex_id> scratch;
         const auto& ch = edges_[e].chain;
-        for (std::size_t i = 0; i + 1 < ch.size() && !encroached[e]; ++i)
-          encroached[e] = segment_encroacher(ch[i], ch[i + 1], scratch) != no_vertex;
+        for (std::size_t i = 0; i + 1 < ch.size() && !encroached[e]; ++i) {
+          const vertex_id a = ch[i], b = ch[i + 1];
+          if (a < upto && b < upto) {
+            const auto [c, r] = detail::diametral_bound(p[a], p[b]);
+            if (!recent.near(c, r)) continue;
+            point<D> lo, hi;
+            for (std::size_t k = 0; k < D; ++k) lo[k] = c[k] - r, hi[k] = c[k] + r;
+            encroached[e] = !recent.grid.visit(lo, hi, [&](vertex_id y) {
+              return squared_distance(c, p[y]) > r * r || geometry::in_diametral(p[a], p[b], p[y]) < 0;
+            });
+          } else {
+            encroached[e] = segment_encroacher(a, b, scratch) != no_vertex;
+          }
+        }
       }, [&](std::uint32_t e) { return static_cast<double>(edges_[e].chain.size()); });
       const std::size_t before = out_.points.size();
       for (std::uint32_t e = 0; e < edges_.size(); ++e) {
@@ -286,6 +330,7 @@ class state {
         }
       }
     }
+    segments_clean_upto_ = out_.points.size();  // no subsegment is encroached by any point now
     return splits;
   }
 
@@ -300,6 +345,7 @@ class state {
   std::vector<plc_edge> edges_;
   std::map<std::pair<vertex_id, vertex_id>, std::uint32_t> edge_index_;
   std::map<vertex_id, std::vector<std::uint32_t>> vertex_edges_;
+  std::size_t segments_clean_upto_ = 0;  // points when conform_segments last returned
   // GSSE_CONFORM_TRACE=1: per round, the number of splits and which rule/action fired how often
   bool trace_on_ = std::getenv("GSSE_CONFORM_TRACE") != nullptr;
   std::map<std::string, std::size_t> trace_;
@@ -589,12 +635,13 @@ class state3 : public state<3> {
   }
 
   /// True if a point of `g` lies in the closed equatorial ball of subfacet T (exact).
-  bool in_closed_ball(const hash_grid<3>& g, const std::array<vertex_id, 3>& T) const {
+  bool in_closed_ball(const recent_points<3>& g, const std::array<vertex_id, 3>& T) const {
     const auto& p = out_.points;
     const auto [cc, r] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]);
+    if (!g.near(cc, r)) return false;
     point3 lo, hi;
     for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
-    return !g.visit(lo, hi, [&](vertex_id w) {
+    return !g.grid.visit(lo, hi, [&](vertex_id w) {
       return squared_distance(cc, p[w]) > r * r || geometry::in_equatorial(p[T[0]], p[T[1]], p[T[2]], p[w]) < 0;
     });
   }
@@ -606,8 +653,8 @@ class state3 : public state<3> {
   /// triangulated again since was wholly clean then: a split changes its vertex set.
   std::vector<std::vector<vertex_id>> encroachers() {
     const auto& p = out_.points;
-    hash_grid<3> recent(p[0], grid_h_);
-    for (vertex_id v = static_cast<vertex_id>(checked_upto_); v < p.size(); ++v) recent.insert(v, p[v]);
+    recent_points<3> recent(p[0], grid_h_);
+    for (vertex_id v = static_cast<vertex_id>(checked_upto_); v < p.size(); ++v) recent.add(v, p[v]);
     std::vector<std::vector<vertex_id>> enc(facets_.size());
     // work in pieces of a facet, so that one large facet does not keep a thread busy alone
     constexpr std::size_t piece = 512;
@@ -653,12 +700,8 @@ class state3 : public state<3> {
     const auto& p = out_.points;
     // points inserted in this phase, anywhere: a triangle whose circumball holds one is stale
     // until its facet is triangulated again next round
-    hash_grid<3> fresh(p[0], 2 * grid_h_);  // few points: larger cells, fewer lookups per ball
-    bool any_fresh = false;
-    auto note = [&](vertex_id v) {
-      fresh.insert(v, p[v]);
-      any_fresh = true;
-    };
+    recent_points<3> fresh(p[0], 2 * grid_h_);  // few points: larger cells, fewer lookups per ball
+    auto note = [&](vertex_id v) { fresh.add(v, p[v]); };
     for (std::uint32_t f = 0; f < facets_.size(); ++f) {
       auto& S = facets_[f];
       const auto tris = S.triangles;
@@ -672,7 +715,7 @@ class state3 : public state<3> {
         if (y == no_vertex && !too_big) continue;
         // not stale: no point inserted in this phase lies in its ball, so the encroacher found at
         // the start of the round stands
-        if (any_fresh && in_closed_ball(fresh, T)) continue;
+        if (in_closed_ball(fresh, T)) continue;
         std::vector<point3> elem{p[T[0]], p[T[1]], p[T[2]]};
         point3 q;
         if (y != no_vertex) {
