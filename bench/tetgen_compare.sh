@@ -50,9 +50,11 @@ R.sort()
 print(f"{R[len(R)//2]:.3f} {R[-1]:.3g} {dmin:.2f}")
 PY
 }
-run() {  # command... ; prints "seconds peak_MB"
-  /usr/bin/time -f "%e %M" -o "$work/time" "$@" > "$work/log" 2>&1 || { echo "FAILED: $* (see below)" >&2; tail -3 "$work/log" >&2; return 1; }
-  awk '{printf "%.2f %.0f\n", $1, $2/1024}' "$work/time"
+run() {  # command... ; prints "seconds peak_MB" (wall clock in ms: /usr/bin/time's %e has 10 ms steps)
+  local t0=$EPOCHREALTIME
+  /usr/bin/time -f "%M" -o "$work/time" "$@" > "$work/log" 2>&1 || { echo "FAILED: $* (see below)" >&2; tail -3 "$work/log" >&2; return 1; }
+  local t1=$EPOCHREALTIME
+  awk -v a="$t0" -v b="$t1" '{printf "%.3f %.0f\n", b - a, $1/1024}' "$work/time"
 }
 best() {  # label command... ; runs REPEAT times, keeps "seconds peak_MB" of the fastest in $work/best.<label>
   local label=$1; shift

@@ -2,7 +2,10 @@
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <numeric>
 #include <random>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -56,4 +59,31 @@ BOOST_AUTO_TEST_CASE(finalize_is_the_same_for_any_thread_count) {
       inner += many.neighbour(c, i) != no_cell;
     }
   BOOST_TEST(inner == 4 * g.cells.size() - 2 * 6 * 20 * 20);  // every facet but the 4800 on the cube's faces
+}
+
+// the parallel for_each runs on kept threads: loops of any width, loops inside loops, and a loop
+// after one that threw must all still visit every element exactly once
+BOOST_AUTO_TEST_CASE(for_each_threads_are_reused_safely) {
+  for (unsigned t : {2u, 5u, 3u, 8u, 2u}) {
+    std::vector<std::atomic<int>> hits(1000);
+    std::vector<int> ids(hits.size());
+    std::iota(ids.begin(), ids.end(), 0);
+    for_each(execution::par(t), ids, [&](int i) { ++hits[static_cast<std::size_t>(i)]; });
+    for (auto& h : hits) BOOST_TEST_REQUIRE(h.load() == 1);
+  }
+  std::vector<int> outer(8), inner(50);
+  std::iota(outer.begin(), outer.end(), 0);
+  std::iota(inner.begin(), inner.end(), 0);
+  std::vector<std::atomic<int>> cells(outer.size() * inner.size());
+  for_each(execution::par(2), outer, [&](int o) {
+    for_each(execution::par(2), inner, [&](int i) { ++cells[static_cast<std::size_t>(o) * inner.size() + static_cast<std::size_t>(i)]; });
+  });
+  for (auto& c : cells) BOOST_TEST_REQUIRE(c.load() == 1);
+  BOOST_CHECK_THROW(for_each(execution::par(2), inner, [](int i) {
+                      if (i == 17) throw std::runtime_error("boom");
+                    }),
+                    std::runtime_error);
+  std::atomic<int> after{0};
+  for_each(execution::par(2), inner, [&](int) { ++after; });
+  BOOST_TEST(after.load() == 50);
 }

@@ -15,6 +15,8 @@
 #include <thread>
 #include <vector>
 
+#include "gsse/traversal/worker_pool.hpp"
+
 namespace gsse::execution {
 struct sequenced_policy {};
 struct parallel_policy {
@@ -46,25 +48,29 @@ void for_each(execution::parallel_policy p, R&& range, F&& f, Cost&& cost) {
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return costs[a] > costs[b]; });
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr error;
-  std::mutex m;
-  auto worker = [&] {
+  struct context {
+    R& range;
+    F& f;
+    const std::vector<std::size_t>& order;
+    detail::worker_pool::job job;
+    std::exception_ptr error;
+    std::mutex m;
+  } c{range, f, order, {}, {}, {}};
+  c.job.n = n;
+  c.job.helpers = static_cast<unsigned>(std::min<std::size_t>(threads, n)) - 1;
+  c.job.context = &c;
+  c.job.body = [](void* self, std::size_t k) {
+    auto& x = *static_cast<context*>(self);
     try {
-      for (std::size_t k; (k = next.fetch_add(1, std::memory_order_relaxed)) < n;)
-        std::invoke(f, std::ranges::begin(range)[order[k]]);
+      std::invoke(x.f, std::ranges::begin(x.range)[x.order[k]]);
     } catch (...) {
-      std::lock_guard lock(m);
-      if (!error) error = std::current_exception();
-      next.store(n);  // stop handing out work
+      std::lock_guard lock(x.m);
+      if (!x.error) x.error = std::current_exception();
+      x.job.next.store(x.job.n);  // stop handing out work
     }
   };
-  {
-    std::vector<std::jthread> pool;
-    for (unsigned t = 1; t < std::min<std::size_t>(threads, n); ++t) pool.emplace_back(worker);
-    worker();  // the calling thread works too
-  }
-  if (error) std::rethrow_exception(error);
+  detail::worker_pool::instance().run(c.job);
+  if (c.error) std::rethrow_exception(c.error);
 }
 
 template <std::ranges::random_access_range R, class F>
