@@ -74,7 +74,7 @@ std::vector<outer_facet<D>> outer_facets(const domain<D>& d, const std::string& 
       std::size_t k;
     };
     // pieces of each segment's cells, in parallel; concatenated in (segment, cell) order
-    constexpr std::size_t piece = 1 << 15;
+    constexpr std::size_t piece = 1 << 13;
     struct range {
       std::size_t k, c0, c1;
     };
