@@ -646,16 +646,23 @@ class state3 : public state<3> {
     });
   }
 
-  /// Encroacher of every subfacet at the start of a round (no_vertex: clean), computed in parallel
-  /// over pieces of facets. A subfacet found clean at the last check (the same three corners,
-  /// whether or not its facet was triangulated again since) can be encroached only by a point
-  /// inserted since: it is checked fully only if one of those lies in its closed ball. A facet not
-  /// triangulated again since was wholly clean then: a split changes its vertex set.
-  std::vector<std::vector<vertex_id>> encroachers() {
+  /// A subfacet to split: facet, triangle, and its encroacher (no_vertex: only too large).
+  struct split_candidate {
+    std::uint32_t f;
+    std::uint32_t t;
+    vertex_id y;
+  };
+
+  /// The subfacets to split at the start of a round, in facet and triangle order: the encroached
+  /// ones, and with a size those longer than it. Computed in parallel over pieces of facets. A
+  /// subfacet found clean at the last check (the same three corners, whether or not its facet was
+  /// triangulated again since) can be encroached only by a point inserted since: it is checked
+  /// fully only if one of those lies in its closed ball. A facet not triangulated again since was
+  /// wholly clean then: a split changes its vertex set.
+  std::vector<split_candidate> encroachers() {
     const auto& p = out_.points;
     recent_points<3> recent(p[0], grid_h_);
     for (vertex_id v = static_cast<vertex_id>(checked_upto_); v < p.size(); ++v) recent.add(v, p[v]);
-    std::vector<std::vector<vertex_id>> enc(facets_.size());
     // work in pieces of a facet, so that one large facet does not keep a thread busy alone
     constexpr std::size_t piece = 512;
     struct range {
@@ -664,98 +671,94 @@ class state3 : public state<3> {
     };
     std::vector<range> work;
     for (std::uint32_t f = 0; f < facets_.size(); ++f) {
-      enc[f].assign(facets_[f].triangles.size(), no_vertex);
+      facets_[f].was_clean.resize(facets_[f].triangles.size());
       for (std::size_t a = 0; a < facets_[f].triangles.size(); a += piece)
         work.push_back({f, a, std::min(facets_[f].triangles.size(), a + piece)});
     }
+    std::vector<std::vector<split_candidate>> found(work.size());
     auto check = [&](const range& w) {
-      const auto& S = facets_[w.f];
+      auto& S = facets_[w.f];
       std::vector<vertex_id> ties;
+      std::vector<split_candidate> mine;
       for (std::size_t t = w.a; t < w.b; ++t) {
         const auto& T = S.triangles[t];
         auto key = T;
         if (!S.checked) std::sort(key.begin(), key.end());
         // clean at the last check: only a point inserted since can encroach it
-        if ((S.checked || std::binary_search(S.clean.begin(), S.clean.end(), key)) && !in_closed_ball(recent, T))
-          continue;
-        enc[w.f][t] = facet_encroacher(T[0], T[1], T[2], ties);
+        vertex_id y = no_vertex;
+        if (!(S.checked || std::binary_search(S.clean.begin(), S.clean.end(), key)) || in_closed_ball(recent, T))
+          y = facet_encroacher(T[0], T[1], T[2], ties);
+        S.was_clean[t] = y == no_vertex;
+        // longer than the size, not merely by rounding: the facet lattice has edges of exactly
+        // the size, which rounding would otherwise split by the ten thousand
+        const bool too_big = opt_.size > 0 && std::max({distance(p[T[0]], p[T[1]]), distance(p[T[1]], p[T[2]]),
+                                                          distance(p[T[2]], p[T[0]])}) > opt_.size * (1 + 1e-9);
+        if (y != no_vertex || too_big) mine.push_back({w.f, static_cast<std::uint32_t>(t), y});
       }
+      found[static_cast<std::size_t>(&w - work.data())] = std::move(mine);
     };
     for_each(execution::par(opt_.threads), work, check,
              [&](const range& w) { return static_cast<double>(w.b - w.a); });
-    for (std::uint32_t f = 0; f < facets_.size(); ++f) {
-      auto& S = facets_[f];
-      S.checked = true;
-      S.was_clean.resize(S.triangles.size());
-      for (std::size_t t = 0; t < S.triangles.size(); ++t) S.was_clean[t] = enc[f][t] == no_vertex;
-    }
+    for (auto& S : facets_) S.checked = true;
     checked_upto_ = p.size();
-    return enc;
+    std::vector<split_candidate> all;
+    for (const auto& v : found) all.insert(all.end(), v.begin(), v.end());
+    return all;
   }
 
   /// Phase C: split encroached (or, with a size, too large) subfacets. Returns the number of splits.
   std::size_t conform_facets() {
     std::size_t splits = 0;
-    const auto enc = encroachers();
     const auto& p = out_.points;
     // points inserted in this phase, anywhere: a triangle whose circumball holds one is stale
     // until its facet is triangulated again next round
     recent_points<3> fresh(p[0], 2 * grid_h_);  // few points: larger cells, fewer lookups per ball
     auto note = [&](vertex_id v) { fresh.add(v, p[v]); };
-    for (std::uint32_t f = 0; f < facets_.size(); ++f) {
+    for (const auto [f, t, y] : encroachers()) {
       auto& S = facets_[f];
-      const auto tris = S.triangles;
-      for (std::size_t t = 0; t < tris.size(); ++t) {
-        const auto& T = tris[t];
-        const vertex_id y = enc[f][t];
-        // longer than the size, not merely by rounding: the facet lattice has edges of exactly
-        // the size, which rounding would otherwise split by the ten thousand
-        const bool too_big = opt_.size > 0 && std::max({distance(p[T[0]], p[T[1]]), distance(p[T[1]], p[T[2]]),
-                                                          distance(p[T[2]], p[T[0]])}) > opt_.size * (1 + 1e-9);
-        if (y == no_vertex && !too_big) continue;
-        // not stale: no point inserted in this phase lies in its ball, so the encroacher found at
-        // the start of the round stands
-        if (in_closed_ball(fresh, T)) continue;
-        std::vector<point3> elem{p[T[0]], p[T[1]], p[T[2]]};
-        point3 q;
-        if (y != no_vertex) {
-          // a free vertex exactly inside the facet becomes a facet vertex
-          if (out_.homes[y].kind == home::free && geometry::orient3d(p[T[0]], p[T[1]], p[T[2]], p[y]) == 0 &&
-              locate(f, p[y], t) >= 0) {
-            out_.homes[y] = {home::facet, f};
-            S.interior.push_back(y);
-            note(y);
-            ++splits;
-            continue;
-          }
-          std::optional<vertex_id> sv;
-          std::optional<std::array<vertex_id, 2>> se;
-          const relation rel = facet_relation(f, out_.homes[y], sv, se);
-          std::array<point3, 2> edge_pts{};
-          if (se) edge_pts = {p[(*se)[0]], p[(*se)[1]]};
-          q = split_at(element_kind::subfacet, rel, elem, p[y], sv ? &p[*sv] : nullptr, se ? &edge_pts : nullptr);
-        } else {
-          q = split_at(element_kind::subfacet, relation::on_carrier, elem, elem[0], nullptr);
-        }
-        // a split point encroaching a subsegment of the facet splits that subsegment instead
-        if (auto s = encroached_subsegment(f, q)) {
-          auto& E = edges_[s->first];
-          const point3 a = p[E.chain[s->second]], b = p[E.chain[s->second + 1]];
-          const point3 m = snap_to_edge(split_at(element_kind::subsegment, relation::on_incident_edge, {a, b}, q, nullptr), a, b);
-          const vertex_id v = add_point(m, {home::edge, s->first});
-          E.chain.insert(E.chain.begin() + static_cast<long>(s->second) + 1, v);
-          note(v);
+      const auto& T = S.triangles[t];  // triangulated again only next round
+      // not stale: no point inserted in this phase lies in its ball, so the encroacher found at
+      // the start of the round stands
+      if (in_closed_ball(fresh, T)) continue;
+      std::vector<point3> elem{p[T[0]], p[T[1]], p[T[2]]};
+      point3 q;
+      if (y != no_vertex) {
+        // a free vertex exactly inside the facet becomes a facet vertex
+        if (out_.homes[y].kind == home::free && geometry::orient3d(p[T[0]], p[T[1]], p[T[2]], p[y]) == 0 &&
+            locate(f, p[y], t) >= 0) {
+          out_.homes[y] = {home::facet, f};
+          S.interior.push_back(y);
+          note(y);
           ++splits;
           continue;
         }
-        if (locate(f, q, t) < 0) q = (1.0 / 3) * (elem[0] + elem[1] + elem[2]);  // outside: centroid
-        for (std::size_t k = 0; k < 3; ++k)  // exact on axis-aligned facets
-          if (S.constant[k]) q[k] = S.constant_value[k];
-        const vertex_id v = add_point(q, {home::facet, f});
-        S.interior.push_back(v);
+        std::optional<vertex_id> sv;
+        std::optional<std::array<vertex_id, 2>> se;
+        const relation rel = facet_relation(f, out_.homes[y], sv, se);
+        std::array<point3, 2> edge_pts{};
+        if (se) edge_pts = {p[(*se)[0]], p[(*se)[1]]};
+        q = split_at(element_kind::subfacet, rel, elem, p[y], sv ? &p[*sv] : nullptr, se ? &edge_pts : nullptr);
+      } else {
+        q = split_at(element_kind::subfacet, relation::on_carrier, elem, elem[0], nullptr);
+      }
+      // a split point encroaching a subsegment of the facet splits that subsegment instead
+      if (auto s = encroached_subsegment(f, q)) {
+        auto& E = edges_[s->first];
+        const point3 a = p[E.chain[s->second]], b = p[E.chain[s->second + 1]];
+        const point3 m = snap_to_edge(split_at(element_kind::subsegment, relation::on_incident_edge, {a, b}, q, nullptr), a, b);
+        const vertex_id v = add_point(m, {home::edge, s->first});
+        E.chain.insert(E.chain.begin() + static_cast<long>(s->second) + 1, v);
         note(v);
         ++splits;
+        continue;
       }
+      if (locate(f, q, t) < 0) q = (1.0 / 3) * (elem[0] + elem[1] + elem[2]);  // outside: centroid
+      for (std::size_t k = 0; k < 3; ++k)  // exact on axis-aligned facets
+        if (S.constant[k]) q[k] = S.constant_value[k];
+      const vertex_id v = add_point(q, {home::facet, f});
+      S.interior.push_back(v);
+      note(v);
+      ++splits;
     }
     return splits;
   }
