@@ -56,6 +56,13 @@ struct recent_points {
     for (std::size_t k = 0; k < D; ++k) lo[k] = empty ? q[k] : std::min(lo[k], q[k]), hi[k] = empty ? q[k] : std::max(hi[k], q[k]);
     empty = false;
   }
+  /// False if none lies in the box [a, b].
+  bool near_box(const point<D>& a, const point<D>& b) const {
+    if (empty) return false;
+    for (std::size_t k = 0; k < D; ++k)
+      if (b[k] < lo[k] || hi[k] < a[k]) return false;
+    return true;
+  }
   /// False if none lies within r of c (the box test; true means "look in the grid").
   bool near(const point<D>& c, double r) const {
     if (empty) return false;
@@ -369,6 +376,13 @@ struct facet_state {
   // triangles that were clean
   bool checked = false;
   std::vector<char> was_clean;
+  // per piece of 512 subfacets at the last check: the box of their balls, and whether none was
+  // to split then (such a piece stays so until a point is inserted in that box)
+  struct piece_summary {
+    point3 lo, hi;
+    bool quiet;
+  };
+  std::vector<piece_summary> pieces;
   std::vector<std::array<vertex_id, 3>> clean;
 };
 
@@ -513,6 +527,12 @@ class state3 : public state<3> {
     const auto& p = out_.points;
     // equatorial ball: circumcircle centre and radius
     const auto [cc, r] = detail::equatorial_bound(p[a], p[b], p[c]);
+    return facet_encroacher(a, b, c, cc, r, ties);
+  }
+  /// The same with the ball's bound (detail::equatorial_bound) given.
+  vertex_id facet_encroacher(vertex_id a, vertex_id b, vertex_id c, const point3& cc, double r,
+                             std::vector<vertex_id>& ties) const {
+    const auto& p = out_.points;
     point3 lo, hi;
     for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
     vertex_id strict = no_vertex;
@@ -638,6 +658,11 @@ class state3 : public state<3> {
   bool in_closed_ball(const recent_points<3>& g, const std::array<vertex_id, 3>& T) const {
     const auto& p = out_.points;
     const auto [cc, r] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]);
+    return in_closed_ball(g, T, cc, r);
+  }
+  /// The same with the ball's bound given.
+  bool in_closed_ball(const recent_points<3>& g, const std::array<vertex_id, 3>& T, const point3& cc, double r) const {
+    const auto& p = out_.points;
     if (!g.near(cc, r)) return false;
     point3 lo, hi;
     for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
@@ -676,18 +701,29 @@ class state3 : public state<3> {
         work.push_back({f, a, std::min(facets_[f].triangles.size(), a + piece)});
     }
     std::vector<std::vector<split_candidate>> found(work.size());
+    std::vector<typename facet_state::piece_summary> summary(work.size());
     auto check = [&](const range& w) {
       auto& S = facets_[w.f];
+      const std::size_t k = static_cast<std::size_t>(&w - work.data());
+      // a quiet piece of a facet not triangulated since, with no new point near: still quiet
+      if (S.checked && S.pieces[w.a / piece].quiet && !recent.near_box(S.pieces[w.a / piece].lo, S.pieces[w.a / piece].hi)) {
+        summary[k] = S.pieces[w.a / piece];
+        return;
+      }
       std::vector<vertex_id> ties;
       std::vector<split_candidate> mine;
+      auto& box = summary[k];
+      box.lo = box.hi = p[S.triangles[w.a][0]];
       for (std::size_t t = w.a; t < w.b; ++t) {
         const auto& T = S.triangles[t];
+        const auto [cc, r] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]);
+        for (std::size_t a = 0; a < 3; ++a) box.lo[a] = std::min(box.lo[a], cc[a] - r), box.hi[a] = std::max(box.hi[a], cc[a] + r);
         auto key = T;
         if (!S.checked) std::sort(key.begin(), key.end());
         // clean at the last check: only a point inserted since can encroach it
         vertex_id y = no_vertex;
-        if (!(S.checked || std::binary_search(S.clean.begin(), S.clean.end(), key)) || in_closed_ball(recent, T))
-          y = facet_encroacher(T[0], T[1], T[2], ties);
+        if (!(S.checked || std::binary_search(S.clean.begin(), S.clean.end(), key)) || in_closed_ball(recent, T, cc, r))
+          y = facet_encroacher(T[0], T[1], T[2], cc, r, ties);
         S.was_clean[t] = y == no_vertex;
         // longer than the size, not merely by rounding: the facet lattice has edges of exactly
         // the size, which rounding would otherwise split by the ten thousand
@@ -695,11 +731,16 @@ class state3 : public state<3> {
                                                           distance(p[T[2]], p[T[0]])}) > opt_.size * (1 + 1e-9);
         if (y != no_vertex || too_big) mine.push_back({w.f, static_cast<std::uint32_t>(t), y});
       }
-      found[static_cast<std::size_t>(&w - work.data())] = std::move(mine);
+      box.quiet = mine.empty();
+      found[k] = std::move(mine);
     };
     for_each(execution::par(opt_.threads), work, check,
              [&](const range& w) { return static_cast<double>(w.b - w.a); });
-    for (auto& S : facets_) S.checked = true;
+    for (auto& S : facets_) {
+      S.checked = true;
+      S.pieces.clear();
+    }
+    for (std::size_t k = 0; k < work.size(); ++k) facets_[work[k].f].pieces.push_back(summary[k]);
     checked_upto_ = p.size();
     std::vector<split_candidate> all;
     for (const auto& v : found) all.insert(all.end(), v.begin(), v.end());
