@@ -522,14 +522,8 @@ class state3 : public state<3> {
 
   /// The encroacher of subfacet abc (smallest id strictly inside its closed equatorial ball, or a
   /// tie that keeps it out of the cospherical Delaunay set), or no_vertex. Read-only: facets are
-  /// checked in parallel, each thread with its own `ties` scratch.
-  vertex_id facet_encroacher(vertex_id a, vertex_id b, vertex_id c, std::vector<vertex_id>& ties) const {
-    const auto& p = out_.points;
-    // equatorial ball: circumcircle centre and radius
-    const auto [cc, r] = detail::equatorial_bound(p[a], p[b], p[c]);
-    return facet_encroacher(a, b, c, cc, r, ties);
-  }
-  /// The same with the ball's bound (detail::equatorial_bound) given.
+  /// checked in parallel, each thread with its own `ties` scratch. (cc, r): the ball's bound,
+  /// detail::equatorial_bound.
   vertex_id facet_encroacher(vertex_id a, vertex_id b, vertex_id c, const point3& cc, double r,
                              std::vector<vertex_id>& ties) const {
     const auto& p = out_.points;

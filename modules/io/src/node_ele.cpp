@@ -173,7 +173,8 @@ void write_node_ele(const domain<D>& d, const std::string& path, unsigned thread
   }
   t.face_marker_base = m;
   if (threads > 1) {
-    // replacing a large existing file frees its pages while renaming: overlap the three
+    // each commit removes the file it replaces (freeing its blocks, a few ms for the .ele of 6e5
+    // tetrahedra): overlap the three
     std::exception_ptr error;
     {
       std::jthread a([&] {

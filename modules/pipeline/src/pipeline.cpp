@@ -164,18 +164,6 @@ pieces_t<D> wrap_pieces(const std::vector<point<D>>& pts, const conformer::bound
   return cells;
 }
 
-/// wrap_pieces with each region's pieces concatenated.
-template <std::size_t D>
-std::vector<std::vector<cell_t<D>>> wrap_all(const std::vector<point<D>>& pts, const conformer::boundary<D>& b,
-                                             const conformer::labelling& l, unsigned threads) {
-  std::vector<std::vector<cell_t<D>>> cells;
-  for (auto& ps : wrap_pieces(pts, b, l, threads)) {
-    auto& c = cells.emplace_back();
-    for (auto& x : ps) c.insert(c.end(), x.begin(), x.end());
-  }
-  return cells;
-}
-
 /// Regions meshed with rule-driven point creation, each on its own copy of the points; the
 /// created points are appended to `pts` (a copy of b.points) region by region, then every region
 /// is meshed again with all of them.
@@ -247,9 +235,9 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
   unsized.size = 0;
   auto b = conformer::conform(p, {}, unsized);
   const auto l = conformer::label(b, p, co.threads);
-  const auto coarse = wrap_all(b.points, b, l, co.threads);
-  std::vector<cell_t<D>> all;
-  for (const auto& cs : coarse) all.insert(all.end(), cs.begin(), cs.end());
+  std::vector<cell_t<D>> all;  // the coarse mesh's cells, every region's pieces in turn
+  for (const auto& region : wrap_pieces(b.points, b, l, co.threads))
+    for (const auto& cs : region) all.insert(all.end(), cs.begin(), cs.end());
   point<D> lo = b.points[0], hi = b.points[0];
   for (const auto& q : b.points)
     for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
