@@ -310,28 +310,32 @@ class state {
         for (std::size_t i = 0; i + 1 < ch.size() && !encroached[e]; ++i) {
           const vertex_id a = ch[i], b = ch[i + 1];
           if (a < upto && b < upto) {
-            const auto [c, r] = detail::diametral_bound(p[a], p[b]);
-            if (!recent.near(c, r)) continue;
-            point<D> lo, hi;
-            for (std::size_t k = 0; k < D; ++k) lo[k] = c[k] - r, hi[k] = c[k] + r;
-            encroached[e] = !recent.grid.visit(lo, hi, [&](vertex_id y) {
-              return squared_distance(c, p[y]) > r * r || geometry::in_diametral(p[a], p[b], p[y]) < 0;
-            });
+            encroached[e] = near_subsegment(recent, a, b);
           } else {
             encroached[e] = segment_encroacher(a, b, scratch) != no_vertex;
           }
         }
       }, [&](std::uint32_t e) { return static_cast<double>(edges_[e].chain.size()); });
-      const std::size_t before = out_.points.size();
+      // an edge found clean above can be encroached only by a point split in since: it is checked
+      // again only if one of those lies in the closed ball of one of its subsegments
+      recent_points<D> added(p[0], 2 * grid_h_);
+      auto touched = [&](std::uint32_t e) {
+        const auto& ch = edges_[e].chain;
+        for (std::size_t i = 0; i + 1 < ch.size(); ++i)
+          if (near_subsegment(added, ch[i], ch[i + 1])) return true;
+        return false;
+      };
       for (std::uint32_t e = 0; e < edges_.size(); ++e) {
-        if (!encroached[e] && out_.points.size() == before) continue;
+        if (!encroached[e] && (added.empty || !touched(e))) continue;
         for (std::size_t i = 0; i + 1 < edges_[e].chain.size();) {
           const vertex_id y = segment_encroacher(edges_[e].chain[i], edges_[e].chain[i + 1], ties);
           if (y == no_vertex) {
             ++i;
             continue;
           }
+          const std::size_t n0 = p.size();
           split_segment(e, i, y);  // then re-check the first half, now at position i
+          for (std::size_t v = n0; v < p.size(); ++v) added.add(static_cast<vertex_id>(v), p[v]);
           ++splits;
           again = true;
         }
@@ -339,6 +343,18 @@ class state {
     }
     segments_clean_upto_ = out_.points.size();  // no subsegment is encroached by any point now
     return splits;
+  }
+
+  /// Whether a point of g lies in the closed diametral ball of subsegment ab (a tie counts).
+  bool near_subsegment(const recent_points<D>& g, vertex_id a, vertex_id b) const {
+    const auto& p = out_.points;
+    const auto [c, r] = detail::diametral_bound(p[a], p[b]);
+    if (!g.near(c, r)) return false;
+    point<D> lo, hi;
+    for (std::size_t k = 0; k < D; ++k) lo[k] = c[k] - r, hi[k] = c[k] + r;
+    return !g.grid.visit(lo, hi, [&](vertex_id y) {
+      return squared_distance(c, p[y]) > r * r || geometry::in_diametral(p[a], p[b], p[y]) < 0;
+    });
   }
 
  protected:

@@ -138,19 +138,20 @@ void write_node_ele(const domain<D>& d, const std::string& path, unsigned thread
   }
   {
     auto& o = ele.stream();
-    std::vector<std::pair<const segment<D>*, std::size_t>> cells;  // (segment, first element id)
-    std::size_t n = 0;
-    for (const auto& s : d.segments()) cells.push_back({&s, n}), n += s.num_cells();
+    // one run over the elements of all segments (segment after segment): the small segments are
+    // formatted alongside the large ones instead of one after another
+    std::vector<std::size_t> first{0};  // first element id of each segment, then the total
+    for (const auto& s : d.segments()) first.push_back(first.back() + s.num_cells());
+    const std::size_t n = first.back();
     o << "# written by gsse::io; attribute = segment number\n" << n << ' ' << D + 1 << " 1\n";
-    for (const auto& [s, first] : cells) {
-      const auto data = s->cell_data();
-      detail::write_lines(o, data.size(), threads, [&, s = s, first = first](std::size_t i, std::string& line) {
-        detail::append_int(line, static_cast<long long>(first + i + 1));
-        for (auto v : data[i]) detail::append_int(line += ' ', static_cast<long long>(v) + 1);
-        detail::append_int(line += ' ', s->number());
-        line += '\n';
-      });
-    }
+    detail::write_lines(o, n, threads, [&](std::size_t i, std::string& line) {
+      const auto k = static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), i) - first.begin()) - 1;
+      const auto& s = d.segments()[k];
+      detail::append_int(line, static_cast<long long>(i + 1));
+      for (auto v : s.cell(static_cast<cell_id>(i - first[k]))) detail::append_int(line += ' ', static_cast<long long>(v) + 1);
+      detail::append_int(line += ' ', s.number());
+      line += '\n';
+    });
   }
   {
     auto& o = face.stream();

@@ -381,7 +381,10 @@ domain<D> mesh_segments<D>::operator()(const conformer::boundary<D>& b, const co
     }
   }, cost);
   d.sync_slots();
-  for (auto& s : d.segments()) s.finalize(threads);
+  // segments side by side, largest first; a large one also splits its own passes across threads
+  // that come free (nested loops), so the small segments no longer wait in line behind it
+  for_each(execution::par(threads), d.segments(), [&](auto& s) { s.finalize(threads); },
+           [](const auto& s) { return static_cast<double>(s.num_cells()); });
   return d;
 }
 
