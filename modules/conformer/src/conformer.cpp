@@ -697,7 +697,10 @@ class state3 : public state<3> {
   std::vector<split_candidate> encroachers() {
     const auto& p = out_.points;
     recent_points<3> recent(p[0], grid_h_);
-    for (vertex_id v = static_cast<vertex_id>(checked_upto_); v < p.size(); ++v) recent.add(v, p[v]);
+    // read only for subfacets known clean; before any is (the first check: every point is recent)
+    // filling it would be serial work for nothing
+    const bool known = std::any_of(facets_.begin(), facets_.end(), [](const facet_state& S) { return S.checked || !S.clean.empty(); });
+    for (vertex_id v = static_cast<vertex_id>(checked_upto_); known && v < p.size(); ++v) recent.add(v, p[v]);
     // work in pieces of a facet, so that one large facet does not keep a thread busy alone
     constexpr std::size_t piece = 512;
     struct range {

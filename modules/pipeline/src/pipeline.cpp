@@ -27,17 +27,18 @@ namespace {
 template <std::size_t D>
 using cell_t = std::array<vertex_id, D + 1>;
 
-/// Faces of region r oriented with r on their positive side.
+/// Faces of every region, each oriented with its region on the positive side, in face order: one
+/// pass over the faces (not one per region).
 template <std::size_t D>
-std::vector<std::array<vertex_id, D>> region_boundary(const conformer::boundary<D>& b, const conformer::labelling& l,
-                                                      int r) {
-  std::vector<std::array<vertex_id, D>> out;
+std::vector<std::vector<std::array<vertex_id, D>>> region_boundaries(const conformer::boundary<D>& b,
+                                                                      const conformer::labelling& l) {
+  std::vector<std::vector<std::array<vertex_id, D>>> out(l.regions.size());
   for (std::size_t f = 0; f < b.faces.size(); ++f)
     for (int s = 0; s < 2; ++s)
-      if (l.side[f][static_cast<std::size_t>(s)] == r) {
+      if (const int r = l.side[f][static_cast<std::size_t>(s)]; r >= 0 && static_cast<std::size_t>(r) < out.size()) {
         auto F = b.faces[f];
         if (s == 1) std::swap(F[0], F[1]);
-        out.push_back(F);
+        out[static_cast<std::size_t>(r)].push_back(F);
       }
   return out;
 }
@@ -84,8 +85,7 @@ pieces_t<D> wrap_pieces(const std::vector<point<D>>& pts, const conformer::bound
                         const conformer::labelling& l, unsigned threads) {
   using face = std::array<vertex_id, D>;
   const auto grid = front::make_grid(std::span<const point<D>>(pts));
-  std::vector<std::vector<face>> bnd(l.regions.size());
-  for (std::size_t r = 0; r < l.regions.size(); ++r) bnd[r] = region_boundary(b, l, static_cast<int>(r));
+  auto bnd = region_boundaries(b, l);
   const auto depth = split_depths(pts, bnd);
   struct piece {
     std::size_t region;
@@ -178,8 +178,7 @@ pieces_t<D> wrap_all_creating(std::vector<point<D>>& pts, const conformer::bound
   std::vector<front::creation_stats> st(l.regions.size());
   std::vector<std::size_t> ids(l.regions.size());
   std::iota(ids.begin(), ids.end(), 0);
-  std::vector<std::vector<std::array<vertex_id, D>>> bnd(l.regions.size());
-  for (std::size_t r = 0; r < l.regions.size(); ++r) bnd[r] = region_boundary(b, l, static_cast<int>(r));
+  const auto bnd = region_boundaries(b, l);
   auto work = [&](std::size_t r) {
     std::vector<point<D>> own = b.points;
     front::wrap_creating(own, grid, faces, bnd[r], region_label(l, r), co, &st[r]);
