@@ -381,9 +381,21 @@ domain<D> mesh_segments<D>::operator()(const conformer::boundary<D>& b, const co
   }, cost);
   d.sync_slots();
   // segments side by side, largest first; a large one also splits its own passes across threads
-  // that come free (nested loops), so the small segments no longer wait in line behind it
-  for_each(execution::par(threads), d.segments(), [&](auto& s) { s.finalize(threads); },
-           [](const auto& s) { return static_cast<double>(s.num_cells()); });
+  // that come free (nested loops), so the small segments no longer wait in line behind it. Each
+  // segment's error is kept and the first in segment order thrown: the same for any thread count.
+  auto& segs = d.segments();
+  std::vector<std::size_t> ids(segs.size());
+  std::iota(ids.begin(), ids.end(), std::size_t{0});
+  std::vector<std::exception_ptr> failed(segs.size());
+  for_each(execution::par(threads), ids, [&](std::size_t k) {
+    try {
+      segs[k].finalize(threads);
+    } catch (...) {
+      failed[k] = std::current_exception();
+    }
+  }, [&](std::size_t k) { return static_cast<double>(segs[k].num_cells()); });
+  for (const auto& e : failed)
+    if (e) std::rethrow_exception(e);
   return d;
 }
 
