@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <map>
+#include <numeric>
 #include <random>
 #include <set>
 
@@ -300,4 +301,61 @@ BOOST_AUTO_TEST_CASE(missing_candidate_is_an_error) {
   BOOST_CHECK_EXCEPTION(front::wrap(p, grid, {{0, 1, 2}}, "seg"), front::front_error, [](const auto& e) {
     return std::string(e.what()).find("seg: no vertex on the inner side of face (1 at") != std::string::npos;
   });
+}
+
+// The conformer wraps a facet again after each round of splits, keeping the triangles no new
+// point disturbs (facet_rewrap). That must give exactly the full wrap: the same triangles in the
+// same order (the conformer's split order follows it). A facet of lattice points (cocircular
+// everywhere: every choice is a tie the perturbation breaks) gains lattice midpoints, boundary
+// splits and random points over several rounds.
+BOOST_AUTO_TEST_CASE(facet_rewrap_is_the_full_wrap) {
+  const int n = 8;
+  const double z = 0.375;
+  std::vector<point3> p;
+  std::vector<vertex_id> ring;  // boundary, counter-clockwise seen from +z
+  auto add = [&](double x, double y) {
+    p.push_back({x, y, z});
+    return vertex_id(p.size() - 1);
+  };
+  for (int i = 0; i < n; ++i) ring.push_back(add(double(i) / n, 0));
+  for (int i = 0; i < n; ++i) ring.push_back(add(1, double(i) / n));
+  for (int i = n; i > 0; --i) ring.push_back(add(double(i) / n, 1));
+  for (int i = n; i > 0; --i) ring.push_back(add(0, double(i) / n));
+  for (int y = 1; y < n; ++y)
+    for (int x = 1; x < n; ++x) add(double(x) / n, double(y) / n);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.02, 0.98);
+  std::vector<tri> previous;
+  std::size_t reused = 0;
+  for (int round = 0; round < 5; ++round) {
+    std::vector<vertex_id> added;
+    if (round > 0) {
+      const std::size_t first = p.size();
+      // a boundary split (midpoint of a ring edge), two lattice midpoints (ties), a few random points
+      const auto e = static_cast<std::size_t>(3 * round) % ring.size();
+      const point3 a = p[ring[e]], b = p[ring[(e + 1) % ring.size()]];
+      ring.insert(ring.begin() + static_cast<long>(e) + 1, add(0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])));
+      add((2.0 * round + 1) / (2 * n), 0.5 + 1.0 / (2 * n));
+      add(11.0 / (2 * n), (2.0 * round + 1) / (2 * n));
+      for (int k = 0; k < 4 * round; ++k) add(u(rng), u(rng));
+      for (std::size_t v = first; v < p.size(); ++v) added.push_back(vertex_id(v));
+    }
+    std::vector<vertex_id> all(p.size());
+    std::iota(all.begin(), all.end(), vertex_id{0});
+    std::vector<std::array<vertex_id, 2>> boundary;
+    for (std::size_t i = 0; i < ring.size(); ++i) boundary.push_back({ring[i], ring[(i + 1) % ring.size()]});
+    const auto grid = front::make_grid(std::span<const point3>(p), 2, all);
+    const auto full = front::wrap_facet(p, 2, grid, boundary, "facet", nullptr, 0, true);
+    if (round > 0) {
+      front::wrap_stats st;
+      const front::facet_rewrap again{previous, added};
+      const auto kept = front::wrap_facet(p, 2, grid, boundary, "facet", &st, 0, true, &again);
+      BOOST_TEST_REQUIRE((kept == full), "round " << round);
+      BOOST_TEST(st.reused < full.size());  // the new points did change some triangles
+      reused += st.reused;
+    }
+    BOOST_TEST(full.size() == 2 * (p.size() - 1) - ring.size(), "round " << round);  // Euler: a triangulated polygon
+    previous = full;
+  }
+  BOOST_TEST(reused > 4 * std::size_t(n * n));  // most triangles were kept, not searched for
 }

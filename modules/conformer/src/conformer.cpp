@@ -226,8 +226,18 @@ class state {
     E.chain.insert(E.chain.begin() + static_cast<long>(i) + 1, m);
   }
 
-  point<D> split_at(element_kind kind, relation rel, std::vector<point<D>> elem, const point<D>& enc,
+  point<D> split_at(element_kind kind, relation rel, const std::vector<point<D>>& elem, const point<D>& enc,
                     const point<D>* shared, const std::array<point3, 2>* shared_edge = nullptr) {
+    std::optional<rules::split_action> fired;
+    const point<D> q = split_point_of(kind, rel, elem, enc, shared, shared_edge, fired);
+    if constexpr (D == 3) count_split(kind, rel, fired);
+    return q;
+  }
+  /// split_at without the trace count (const: subfacet splits are planned in parallel); `fired`
+  /// receives the action of the rule step that gave the point.
+  point<D> split_point_of(element_kind kind, relation rel, const std::vector<point<D>>& elem, const point<D>& enc,
+                          const point<D>* shared, const std::array<point3, 2>* shared_edge,
+                          std::optional<rules::split_action>& fired) const {
     const rules::split_rule* r = rules_->split.lookup(kind, rel);
     if (!r) throw conform_error("conformer rules have no rule for " + std::string(rules::to_string(kind)) + "/" +
                                 std::string(rules::to_string(rel)));
@@ -235,14 +245,16 @@ class state {
       std::optional<point2> sv;
       if (shared) sv = *shared;
       const std::array<point2, 2> s{elem[0], elem[1]};
-      if (auto c = rules::split_point(*r, std::span<const point2, 2>(s), enc, sv))
+      if (auto c = rules::split_point(*r, std::span<const point2, 2>(s), enc, sv)) {
+        fired = c->action;
         return c->action == rules::split_action::project ? exact_projection(c->at, elem, enc) : c->at;
+      }
     } else {
       rules::shared3 sh;
       if (shared) sh.vertex = *shared;
       if (shared_edge) sh.edge = *shared_edge;
       if (auto c = rules::split_point(*r, std::span<const point3>(elem), enc, sh)) {
-        if (trace_on_) ++trace_[std::string(rules::to_string(kind)) + "/" + std::string(rules::to_string(rel)) + "/" + std::string(rules::to_string(c->action))];
+        fired = c->action;
         return c->action == rules::split_action::project ? exact_projection(c->at, elem, enc) : c->at;
       }
     }
@@ -251,6 +263,10 @@ class state {
     point<D> m{};
     for (const auto& q : elem) m = m + (1.0 / static_cast<double>(elem.size())) * q;
     return m;
+  }
+  void count_split(element_kind kind, relation rel, const std::optional<rules::split_action>& fired) {
+    if (trace_on_ && fired)
+      ++trace_[std::string(rules::to_string(kind)) + "/" + std::string(rules::to_string(rel)) + "/" + std::string(rules::to_string(*fired))];
   }
 
   /// On an axis-aligned element the orthogonal projection of p only replaces the element's constant
@@ -384,6 +400,7 @@ struct facet_state {
   std::vector<vertex_id> interior;                                 // Steiner and embedded points
   std::set<vertex_id> corners;                                     // PLC vertices of the facet
   std::vector<std::array<vertex_id, 3>> triangles;                 // ccw in the projection
+  std::vector<vertex_id> wrapped;                                  // sorted vertices when triangulated
   std::size_t boundary_size = 0;                                   // chain vertices when triangulated
   std::array<bool, 3> constant{};                                  // coordinate shared by all corners
   std::array<double, 3> constant_value{};
@@ -505,9 +522,17 @@ class state3 : public state<3> {
         }
     std::sort(S.clean.begin(), S.clean.end());
     S.checked = false;
+    // the last triangulation, whose triangles the wrap keeps where no point added since disturbs
+    // them (same result, fewer searches: the conformer's late rounds re-wrap a large facet for a
+    // few points)
+    const auto previous = std::move(S.triangles);
     S.triangles.clear();
     S.boundary_size = boundary_size(f);
-    const auto vs = facet_vertices(f);
+    auto vs = facet_vertices(f);
+    std::vector<vertex_id> added;
+    std::set_difference(vs.begin(), vs.end(), S.wrapped.begin(), S.wrapped.end(), std::back_inserter(added));
+    const front::facet_rewrap again{previous, added};
+    const bool reuse = !previous.empty() && added.size() + S.wrapped.size() == vs.size();  // vertices only grow
     const auto grid = front::make_grid(out_.points, S.axis, vs);
     for (const auto& loop : S.loops) {
       std::vector<std::array<vertex_id, 2>> b;
@@ -521,12 +546,13 @@ class state3 : public state<3> {
       try {
         // an axis-aligned facet's points share the dropped coordinate exactly (splits copy it)
         auto t = front::wrap_facet(out_.points, S.axis, grid, b, plc_.source + ": facet " + std::to_string(f + 1),
-                                   nullptr, 0, S.constant[static_cast<std::size_t>(S.axis)]);
+                                   nullptr, 0, S.constant[static_cast<std::size_t>(S.axis)], reuse ? &again : nullptr);
         S.triangles.insert(S.triangles.end(), t.begin(), t.end());
       } catch (const front::front_error& e) {
         throw conform_error(std::string(e.what()) + " (facet polygons overlap or self-intersect?)");
       }
     }
+    S.wrapped = std::move(vs);
   }
 
   /// Triangulates the given facets, in parallel: each reads the shared points and chains and
@@ -760,56 +786,106 @@ class state3 : public state<3> {
     return all;
   }
 
+  /// A subfacet split worked out from the state at the start of phase C's loop (split_plan()),
+  /// in parallel; the loop then only applies it, unless the state it read has changed since.
+  struct split_plan {
+    home h{};                   // the encroacher's home it read
+    bool claim = false;         // the encroacher lies exactly in the facet: it becomes a facet vertex
+    relation rel = relation::on_carrier;
+    std::optional<rules::split_action> fired, fired_sub;  // for GSSE_CONFORM_TRACE
+    point3 q{};                 // the split point (subject to the subsegment test)
+    point3 at{};                // where it goes if no subsegment intervenes (centroid if q is outside)
+    std::optional<std::pair<std::uint32_t, std::size_t>> sub;  // subsegment that q encroaches
+    point3 m{};                 // its split point
+  };
+
+  split_plan plan_split(const split_candidate& c) const {
+    const auto& p = out_.points;
+    const auto& S = facets_[c.f];
+    const auto& T = S.triangles[c.t];
+    split_plan s;
+    const std::vector<point3> elem{p[T[0]], p[T[1]], p[T[2]]};
+    if (c.y != no_vertex) {
+      s.h = out_.homes[c.y];
+      // a free vertex exactly inside the facet becomes a facet vertex
+      if (s.h.kind == home::free && geometry::orient3d(p[T[0]], p[T[1]], p[T[2]], p[c.y]) == 0 && locate(c.f, p[c.y], c.t) >= 0) {
+        s.claim = true;
+        return s;
+      }
+      std::optional<vertex_id> sv;
+      std::optional<std::array<vertex_id, 2>> se;
+      s.rel = facet_relation(c.f, s.h, sv, se);
+      std::array<point3, 2> edge_pts{};
+      if (se) edge_pts = {p[(*se)[0]], p[(*se)[1]]};
+      s.q = split_point_of(element_kind::subfacet, s.rel, elem, p[c.y], sv ? &p[*sv] : nullptr, se ? &edge_pts : nullptr, s.fired);
+    } else {
+      s.q = split_point_of(element_kind::subfacet, relation::on_carrier, elem, elem[0], nullptr, nullptr, s.fired);
+    }
+    plan_subsegment(c.f, s);
+    s.at = s.q;
+    if (locate(c.f, s.at, c.t) < 0) s.at = (1.0 / 3) * (elem[0] + elem[1] + elem[2]);  // outside: centroid
+    for (std::size_t k = 0; k < 3; ++k)  // exact on axis-aligned facets
+      if (S.constant[k]) s.at[k] = S.constant_value[k];
+    return s;
+  }
+  /// A split point encroaching a subsegment of the facet splits that subsegment instead.
+  void plan_subsegment(std::uint32_t f, split_plan& s) const {
+    const auto& p = out_.points;
+    s.sub = encroached_subsegment(f, s.q);
+    s.fired_sub.reset();
+    if (!s.sub) return;
+    const auto& E = edges_[s.sub->first];
+    const point3 a = p[E.chain[s.sub->second]], b = p[E.chain[s.sub->second + 1]];
+    s.m = snap_to_edge(split_point_of(element_kind::subsegment, relation::on_incident_edge, {a, b}, s.q, nullptr, nullptr, s.fired_sub), a, b);
+  }
+
   /// Phase C: split encroached (or, with a size, too large) subfacets. Returns the number of splits.
   std::size_t conform_facets() {
     std::size_t splits = 0;
     const auto& p = out_.points;
+    const auto todo = encroachers();
+    // The splits are planned in parallel, then applied in order. A plan is made again if what it
+    // read changed meanwhile: the encroacher's home (claimed by an earlier facet) or, for the
+    // subsegment test, a chain of the facet (split by an earlier plan).
+    std::vector<split_plan> plans(todo.size());
+    std::vector<std::size_t> ids(todo.size());
+    std::iota(ids.begin(), ids.end(), std::size_t{0});
+    for_each(execution::par(opt_.threads), ids, [&](std::size_t k) { plans[k] = plan_split(todo[k]); });
+    std::vector<char> chain_changed(facets_.size(), 0);
     // points inserted in this phase, anywhere: a triangle whose circumball holds one is stale
     // until its facet is triangulated again next round
     recent_points<3> fresh(p[0], 2 * grid_h_);  // few points: larger cells, fewer lookups per ball
     auto note = [&](vertex_id v) { fresh.add(v, p[v]); };
-    for (const auto [f, t, y] : encroachers()) {
+    for (std::size_t k = 0; k < todo.size(); ++k) {
+      const auto [f, t, y] = todo[k];
       auto& S = facets_[f];
-      const auto& T = S.triangles[t];  // triangulated again only next round
       // not stale: no point inserted in this phase lies in its ball, so the encroacher found at
-      // the start of the round stands
-      if (in_closed_ball(fresh, T)) continue;
-      std::vector<point3> elem{p[T[0]], p[T[1]], p[T[2]]};
-      point3 q;
-      if (y != no_vertex) {
-        // a free vertex exactly inside the facet becomes a facet vertex
-        if (out_.homes[y].kind == home::free && geometry::orient3d(p[T[0]], p[T[1]], p[T[2]], p[y]) == 0 &&
-            locate(f, p[y], t) >= 0) {
-          out_.homes[y] = {home::facet, f};
-          S.interior.push_back(y);
-          note(y);
-          ++splits;
-          continue;
-        }
-        std::optional<vertex_id> sv;
-        std::optional<std::array<vertex_id, 2>> se;
-        const relation rel = facet_relation(f, out_.homes[y], sv, se);
-        std::array<point3, 2> edge_pts{};
-        if (se) edge_pts = {p[(*se)[0]], p[(*se)[1]]};
-        q = split_at(element_kind::subfacet, rel, elem, p[y], sv ? &p[*sv] : nullptr, se ? &edge_pts : nullptr);
-      } else {
-        q = split_at(element_kind::subfacet, relation::on_carrier, elem, elem[0], nullptr);
+      // the start of the round stands (triangles change only next round)
+      if (in_closed_ball(fresh, S.triangles[t])) continue;
+      split_plan& s = plans[k];
+      if (y != no_vertex && (out_.homes[y].kind != s.h.kind || out_.homes[y].id != s.h.id))
+        s = plan_split(todo[k]);
+      else if (chain_changed[f] && !s.claim)
+        plan_subsegment(f, s);
+      if (s.claim) {
+        out_.homes[y] = {home::facet, f};
+        S.interior.push_back(y);
+        note(y);
+        ++splits;
+        continue;
       }
-      // a split point encroaching a subsegment of the facet splits that subsegment instead
-      if (auto s = encroached_subsegment(f, q)) {
-        auto& E = edges_[s->first];
-        const point3 a = p[E.chain[s->second]], b = p[E.chain[s->second + 1]];
-        const point3 m = snap_to_edge(split_at(element_kind::subsegment, relation::on_incident_edge, {a, b}, q, nullptr), a, b);
-        const vertex_id v = add_point(m, {home::edge, s->first});
-        E.chain.insert(E.chain.begin() + static_cast<long>(s->second) + 1, v);
+      count_split(element_kind::subfacet, s.rel, s.fired);
+      if (s.sub) {
+        count_split(element_kind::subsegment, relation::on_incident_edge, s.fired_sub);
+        auto& E = edges_[s.sub->first];
+        const vertex_id v = add_point(s.m, {home::edge, s.sub->first});
+        E.chain.insert(E.chain.begin() + static_cast<long>(s.sub->second) + 1, v);
+        for (auto g : E.facets) chain_changed[g] = 1;
         note(v);
         ++splits;
         continue;
       }
-      if (locate(f, q, t) < 0) q = (1.0 / 3) * (elem[0] + elem[1] + elem[2]);  // outside: centroid
-      for (std::size_t k = 0; k < 3; ++k)  // exact on axis-aligned facets
-        if (S.constant[k]) q[k] = S.constant_value[k];
-      const vertex_id v = add_point(q, {home::facet, f});
+      const vertex_id v = add_point(s.at, {home::facet, f});
       S.interior.push_back(v);
       note(v);
       ++splits;

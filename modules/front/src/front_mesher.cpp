@@ -93,8 +93,13 @@ std::vector<std::array<vertex_id, 3>> wrap_wall(std::span<const point2> pts, con
 std::vector<std::array<vertex_id, 3>> wrap_facet(std::span<const point3> pts, int axis, const point_grid<2>& grid,
                                                  const std::vector<std::array<vertex_id, 2>>& boundary,
                                                  const std::string& label, wrap_stats* stats, std::size_t max_cells,
-                                                 bool coplanar) {
-  return run(facet_kernel{pts, axis, coplanar}, grid, boundary, label, stats, max_cells, 0);
+                                                 bool coplanar, const facet_rewrap* again) {
+  const facet_kernel k{pts, axis, coplanar};
+  gift_wrapper<facet_kernel> w(k, grid);
+  if (again) w.reuse(again->previous, again->added);
+  auto cells = w.run(boundary, label, max_cells);
+  if (stats) *stats += w.stats();
+  return cells;
 }
 
 }  // namespace gsse::front

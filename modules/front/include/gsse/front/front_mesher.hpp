@@ -49,12 +49,22 @@ std::vector<std::array<vertex_id, 3>> wrap_wall(std::span<const point2> pts, con
                                                 const std::vector<std::array<vertex_id, 2>>& boundary,
                                                 const std::string& label, std::size_t axis, double x0,
                                                 std::array<std::vector<std::array<vertex_id, 2>>, 2>& sides);
+/// A facet wrapped again after points were added: the triangles of its last wrap (all of whose
+/// points are still in the grid) and the points of the grid added since (gift_wrapper::reuse).
+struct facet_rewrap {
+  std::span<const std::array<vertex_id, 3>> previous;
+  std::span<const vertex_id> added;
+};
+
 /// Triangles of a planar facet of 3D points: edges with the facet on their left in the projection
 /// dropping `axis`; the grid must be built with the same axis. `coplanar`: the points are exactly
-/// coplanar (e.g. all share the dropped coordinate), which allows the faster exact search.
+/// coplanar (e.g. all share the dropped coordinate), which allows the faster exact search and,
+/// with `again`, keeps every triangle of the last wrap that no added point disturbs without a
+/// search (the same triangles in the same order as without it).
 std::vector<std::array<vertex_id, 3>> wrap_facet(std::span<const point3> pts, int axis, const point_grid<2>& grid,
                                                  const std::vector<std::array<vertex_id, 2>>& boundary,
                                                  const std::string& label, wrap_stats* stats = nullptr,
-                                                 std::size_t max_cells = 0, bool coplanar = false);
+                                                 std::size_t max_cells = 0, bool coplanar = false,
+                                                 const facet_rewrap* again = nullptr);
 
 }  // namespace gsse::front

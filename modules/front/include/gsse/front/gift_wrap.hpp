@@ -20,6 +20,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -41,12 +42,14 @@ struct wrap_stats {
   std::size_t side_tests = 0;       // exact orientation tests
   std::size_t visits = 0;           // grid points looked at
   std::size_t max_front = 0;        // largest number of open faces
+  std::size_t reused = 0;           // apexes kept from a previous wrap (gift_wrapper::reuse)
   wrap_stats& operator+=(const wrap_stats& o) {
     cells += o.cells;
     candidate_tests += o.candidate_tests;
     side_tests += o.side_tests;
     visits += o.visits;
     max_front = std::max(max_front, o.max_front);
+    reused += o.reused;
     return *this;
   }
 };
@@ -79,6 +82,32 @@ class gift_wrapper {
     overlay_ = overlay;
     create_ = std::move(create);
     max_defer_ = max_defer;
+  }
+
+  /// Re-wrapping a region after points were added (edge fronts with a strict order only; else
+  /// ignored): `previous` are the cells of its last wrap, whose points are all still candidates,
+  /// and `added` every candidate since. An open face that was a face of a previous cell f + x
+  /// takes x again unless an added point beats x: x was beaten by no old point, and "beats" is
+  /// a strict order, so x is still the one apex. Only the few added points near its ball are
+  /// tested, instead of a search; the cells, and their order, are exactly those of a full wrap.
+  void reuse(std::span<const cell> previous, std::span<const vertex_id> added) {
+    static_assert(D == 2, "reuse: edge fronts (planar facets) only");
+    if (!k_.strict() || previous.empty()) return;
+    // open addressing, at most half full (a sort of the entries cost more than the wrap saved)
+    std::size_t size = 16;
+    while (size < 6 * previous.size()) size *= 2;
+    reused_.assign(size, {empty_key, no_vertex});
+    for (const cell& c : previous)  // faces into c (add_cell's convention), each with its apex
+      for (std::size_t i = 0; i <= D; ++i) {
+        const std::uint64_t k = key(c[(i + 1) % 3], c[(i + 2) % 3]);
+        std::size_t h = slot(k);
+        while (reused_[h].first != empty_key) h = (h + 1) & (reused_.size() - 1);
+        reused_[h] = {k, c[i]};
+      }
+    std::vector<coord> at;
+    at.reserve(added.size());
+    for (vertex_id v : added) at.push_back(k_.grid_coord(v));
+    added_.build(at, added);
   }
 
   /// Meshes the region bounded by `boundary` (faces oriented inward). `label` names the region in
@@ -330,7 +359,45 @@ class gift_wrapper {
     return far * (1 + 1e-12) <= r2;
   }
 
+  static constexpr std::uint64_t empty_key = ~std::uint64_t{0};
+  static std::uint64_t key(vertex_id a, vertex_id b) { return (static_cast<std::uint64_t>(a) << 32) | b; }
+  std::size_t slot(std::uint64_t k) const {
+    return static_cast<std::size_t>((k * 0x9E3779B97F4A7C15ull) >> 20) & (reused_.size() - 1);
+  }
+
+  /// The apex of f in the previous wrap if no added point beats it (see reuse()), else no_vertex.
+  vertex_id reusable(const face& f) {
+    if constexpr (D == 2) {
+      const std::uint64_t k = key(f[0], f[1]);
+      std::size_t h = slot(k);
+      while (reused_[h].first != k) {
+        if (reused_[h].first == empty_key) return no_vertex;
+        h = (h + 1) & (reused_.size() - 1);
+      }
+      const vertex_id x = reused_[h].second;
+      coord c;
+      double r = 0;
+      if (!k_.ball(f, x, c, r)) return no_vertex;
+      coord lo, hi;
+      for (std::size_t a = 0; a < G; ++a) lo[a] = c[a] - r, hi[a] = c[a] + r;
+      const double r2 = r * r;
+      const bool kept = added_.visit_box(lo, hi, [&](vertex_id y, const coord& q) {
+        double d2 = 0;
+        for (std::size_t a = 0; a < G; ++a) d2 += (q[a] - c[a]) * (q[a] - c[a]);
+        if (d2 > r2 || in_face(f, y)) return true;  // outside the padded ball: cannot beat x
+        ++stats_.side_tests;
+        return !(k_.side(f, y) > 0 && (++stats_.candidate_tests, k_.beats(f, x, y)));
+      });
+      if (kept) ++stats_.reused;
+      return kept ? x : no_vertex;
+    } else {
+      return no_vertex;
+    }
+  }
+
   vertex_id apex(const face& f, const std::string& label) {
+    if (!reused_.empty())
+      if (const vertex_id x = reusable(f); x != no_vertex) return x;
     const auto pr = k_.prepare(f);
     // Caps: the balls through the face's circumcircle, by height h above its plane; a vertex's
     // hint t is the centre offset of its ball, so the vertices in the cap of height h are those
@@ -553,6 +620,8 @@ class gift_wrapper {
   wrap_stats stats_;
   std::vector<vertex_id> visited_;
   std::vector<seen> seen_;
+  std::vector<std::pair<std::uint64_t, vertex_id>> reused_;  // (face key, apex) of the previous wrap, hashed
+  point_grid<G> added_;                                      // points added since it
 };
 
 }  // namespace gsse::front
