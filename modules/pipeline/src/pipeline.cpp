@@ -6,6 +6,7 @@
 #include <exception>
 #include <mutex>
 #include <thread>
+#include <tuple>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -123,10 +124,12 @@ pieces_t<D> wrap_pieces(const std::vector<point<D>>& pts, const conformer::bound
     for (;;) {
       cv.wait(lock, [&] { return !todo.empty() || busy == 0 || error; });
       if (todo.empty() || error) break;  // nothing left, or nothing can come
-      // walls first (they make work), then the largest front
-      auto it = std::max_element(todo.begin(), todo.end(), [](const piece& x, const piece& y) {
-        return std::pair(x.depth > 0, x.front.size()) < std::pair(y.depth > 0, y.front.size());
-      });
+      // walls first (they make work), then whole regions, then the pieces of split ones, each
+      // by the largest front: a region's cost per face varies (twice as much in a thin layer,
+      // whose searches reach into its neighbours), so whole regions go while walls are built and
+      // the pieces, of like size (walls halve them), fill the end evenly
+      auto rank = [](const piece& x) { return std::tuple(x.depth > 0, x.level == 0, x.front.size()); };
+      auto it = std::max_element(todo.begin(), todo.end(), [&](const piece& x, const piece& y) { return rank(x) < rank(y); });
       piece pc = std::move(*it);
       todo.erase(it);
       ++busy;
