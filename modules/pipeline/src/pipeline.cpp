@@ -125,8 +125,8 @@ pieces_t<D> wrap_pieces(const std::vector<point<D>>& pts, const conformer::bound
       cv.wait(lock, [&] { return !todo.empty() || busy == 0 || error; });
       if (todo.empty() || error) break;  // nothing left, or nothing can come
       // walls first (they make work), then whole regions, then the pieces of split ones, each
-      // by the largest front: a region's cost per face varies (twice as much in a thin layer,
-      // whose searches reach into its neighbours), so whole regions go while walls are built and
+      // by the largest front: a region's cost per face varies (up to twice as much in a thin
+      // layer, whose searches reach into its neighbours), so whole regions go while walls are built and
       // the pieces, of like size (walls halve them), fill the end evenly
       auto rank = [](const piece& x) { return std::tuple(x.depth > 0, x.level == 0, x.front.size()); };
       auto it = std::max_element(todo.begin(), todo.end(), [&](const piece& x, const piece& y) { return rank(x) < rank(y); });
