@@ -456,18 +456,39 @@ report check(const domain<D>& d, const plc<D>& input, const options& o) {
     std::array<vertex_id, D> v;
     std::uint32_t owner;
   };
+  // bucketed by their smallest vertex (counting sort, in cell order), each bucket sorted: small
+  // sorts in cache instead of one sort of all faces
+  std::vector<std::size_t> bucket(p.size() + 1, 0);
+  auto face_of = [&](std::size_t c, std::size_t i) {
+    face_rec f;
+    for (std::size_t k = 0; k < D; ++k) f.v[k] = m.cells[c][static_cast<std::size_t>(outward<D>[i][k])];
+    std::sort(f.v.begin(), f.v.end());
+    f.owner = static_cast<std::uint32_t>(c * (D + 1) + i);
+    return f;
+  };
+  for (const auto& c : m.cells) {
+    for (std::size_t i = 0; i <= D; ++i) {  // the smallest vertex of the face opposite vertex i
+      vertex_id low = ~vertex_id{0};
+      for (std::size_t k = 0; k <= D; ++k)
+        if (k != i) low = std::min(low, c[k]);
+      ++bucket[low + 1];
+    }
+  }
+  std::partial_sum(bucket.begin(), bucket.end(), bucket.begin());
   std::vector<face_rec> faces(nc * (D + 1));
-  in_tasks(threads, nc, [&](std::size_t b, std::size_t e, std::size_t) {
-    for (std::size_t c = b; c < e; ++c)
+  {
+    auto fill = bucket;
+    for (std::size_t c = 0; c < nc; ++c)
       for (std::size_t i = 0; i <= D; ++i) {
-        auto& f = faces[c * (D + 1) + i];
-        for (std::size_t k = 0; k < D; ++k) f.v[k] = m.cells[c][static_cast<std::size_t>(outward<D>[i][k])];
-        std::sort(f.v.begin(), f.v.end());
-        f.owner = static_cast<std::uint32_t>(c * (D + 1) + i);
+        const auto f = face_of(c, i);
+        faces[fill[f.v[0]]++] = f;
       }
+  }
+  in_tasks(threads, p.size(), [&](std::size_t b, std::size_t e, std::size_t) {
+    for (std::size_t v = b; v < e; ++v)
+      std::sort(faces.begin() + static_cast<std::ptrdiff_t>(bucket[v]), faces.begin() + static_cast<std::ptrdiff_t>(bucket[v + 1]),
+                [](const face_rec& x, const face_rec& y) { return x.v < y.v || (x.v == y.v && x.owner < y.owner); });
   });
-  gsse::stable_sort(execution::par(threads), faces.begin(), faces.end(),
-                    [](const face_rec& a, const face_rec& b) { return a.v < b.v || (a.v == b.v && a.owner < b.owner); });
 
   // ---- conformity ------------------------------------------------------------------------
   point<D> lo{}, hi{};
