@@ -345,6 +345,19 @@ BOOST_AUTO_TEST_CASE(region_and_hole_points) {
   auto holed = p;
   holed.holes.push_back({1.5, 0.25, 0.25});
   BOOST_TEST(counts(verify::check(d, holed)).holes == 1u);
+  // no cells at all: every facet uncovered; with a hole point, only facets some cell reaches count
+  domain<3> empty;
+  for (const auto& x : d.points()) empty.add_point(x);
+  BOOST_TEST(counts(verify::check(empty, p)).uncovered == 11u);
+  // the right box removed and declared a hole: its facets lie where no cell is
+  auto left = d;
+  left.segments()[1].mutable_cells().clear();
+  auto right_hole = p;
+  right_hole.regions.pop_back();
+  right_hole.holes.push_back({1.75, 0.5, 0.5});
+  const auto r = verify::check(left, right_hole);
+  BOOST_TEST(r.ok(), all(r));
+  BOOST_TEST(r.facets_in_holes == 5u);  // the right box's facets but the one at x = 1
 }
 
 BOOST_AUTO_TEST_CASE(report_is_the_same_for_any_thread_count) {

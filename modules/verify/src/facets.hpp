@@ -247,18 +247,10 @@ class facet_set {
   template <class F>
   void near(const pt& lo, const pt& hi, std::vector<std::uint32_t>& scratch, F&& fn) const {
     scratch.clear();
-    std::array<std::size_t, D> a, b;
-    for (std::size_t k = 0; k < D; ++k) a[k] = cell_index(lo, k), b[k] = cell_index(hi, k);
-    auto c = a;
-    for (;;) {
-      std::size_t idx = 0;
-      for (std::size_t k = D; k-- > 0;) idx = idx * n_[k] + c[k];
+    for_cells(lo, hi, [&](std::size_t idx) {
       scratch.insert(scratch.end(), ids_.begin() + static_cast<std::ptrdiff_t>(start_[idx]),
                      ids_.begin() + static_cast<std::ptrdiff_t>(start_[idx + 1]));
-      std::size_t k = 0;
-      while (k < D && ++c[k] > b[k]) c[k] = a[k], ++k;
-      if (k == D) break;
-    }
+    });
     std::sort(scratch.begin(), scratch.end());
     scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
     for (auto f : scratch) {
@@ -385,6 +377,22 @@ class facet_set {
     return static_cast<std::size_t>(std::clamp(t, 0.0, static_cast<double>(n_[k] - 1)));
   }
 
+  /// Calls fn(index) for the grid cells the box [lo, hi] meets.
+  template <class F>
+  void for_cells(const pt& lo, const pt& hi, F&& fn) const {
+    std::array<std::size_t, D> a, b;
+    for (std::size_t k = 0; k < D; ++k) a[k] = cell_index(lo, k), b[k] = cell_index(hi, k);
+    auto c = a;
+    for (;;) {
+      std::size_t idx = 0;
+      for (std::size_t k = D; k-- > 0;) idx = idx * n_[k] + c[k];
+      fn(idx);
+      std::size_t k = 0;
+      while (k < D && ++c[k] > b[k]) c[k] = a[k], ++k;
+      if (k == D) return;
+    }
+  }
+
   void build_grid(const plc<D>& p) {
     lo_ = hi_ = p.points.empty() ? pt{} : p.points[0];
     for (const auto& x : p.points)
@@ -402,17 +410,7 @@ class facet_set {
       if (!facets_[i].usable) continue;
       pt lo = facets_[i].lo, hi = facets_[i].hi;
       for (std::size_t k = 0; k < D; ++k) lo[k] -= tol_, hi[k] += tol_;
-      std::array<std::size_t, D> a, b;
-      for (std::size_t k = 0; k < D; ++k) a[k] = cell_index(lo, k), b[k] = cell_index(hi, k);
-      auto c = a;
-      for (;;) {
-        std::size_t idx = 0;
-        for (std::size_t k = D; k-- > 0;) idx = idx * n_[k] + c[k];
-        lists[idx].push_back(i);
-        std::size_t k = 0;
-        while (k < D && ++c[k] > b[k]) c[k] = a[k], ++k;
-        if (k == D) break;
-      }
+      for_cells(lo, hi, [&](std::size_t idx) { lists[idx].push_back(i); });
     }
     start_.assign(cells + 1, 0);
     for (std::size_t c = 0; c < cells; ++c) start_[c + 1] = start_[c] + lists[c].size();

@@ -589,7 +589,7 @@ report check(const domain<D>& d, const plc<D>& input, const options& o) {
   mixed_markers.emit(r, r.mixed_marker_faces,
                      std::string(D == 3 ? "faces span coplanar facets" : "edges span collinear segments") + " of different markers");
 
-  // facet coverage; facets with no face on them must lie where no cell reaches (in a hole)
+  // facet coverage; a facet with no face on it must lie where no cell reaches (in a hole)
   tally uncovered, overcovered;
   std::vector<std::uint32_t> bare;
   std::vector<point<D>> probes;
@@ -597,7 +597,7 @@ report check(const domain<D>& d, const plc<D>& input, const options& o) {
     if (!fs[f].usable) continue;
     const double area = fs[f].size, got = cov[f].all;
     if (std::abs(got - area) <= rel_tol * area) continue;
-    if (got == 0) {
+    if (got == 0 && !input.holes.empty()) {  // without hole points every facet bounds a meshed region
       if (const auto x = fs.sample(f)) {
         bare.push_back(f);
         probes.push_back(*x);
