@@ -336,6 +336,29 @@ BOOST_AUTO_TEST_CASE(slanted_facets_use_the_tolerance) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(faces_across_coplanar_facets) {
+  // the left box's face y = 0 given as two triangles split by its anti-diagonal, which crosses
+  // the Kuhn triangles of two of its squares: their faces span both facets
+  const auto d = two_box_mesh(1.0);
+  for (int marker : {7, 8}) {
+    auto p = two_box_plc();
+    auto& f = p.facets[3];
+    BOOST_TEST_REQUIRE((f.polygons[0] == std::vector<vertex_id>{0, 4, 5, 1}));  // (0,0,0) (1,0,0) (1,0,1) (0,0,1)
+    f.polygons[0] = {0, 4, 1};
+    f.marker = 7;
+    p.facets.push_back({{{4, 5, 1}}, {}, marker, 0});
+    const auto r = verify::check(d, p);
+    const counts k(r);
+    if (marker == 7) {  // one marker: TetGen merges the two, so may the mesh
+      BOOST_TEST(r.ok(), all(r));
+      BOOST_TEST(r.spanning_faces == 4u);
+    } else {
+      BOOST_TEST(k.mixed_markers == 4u, all(r));
+      BOOST_TEST(k.total() == 4u);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(region_and_hole_points) {
   auto p = two_box_plc();
   const auto d = two_box_mesh(1.0);
