@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 
+#include "gsse/geometry/exact_ball.hpp"
 #include "gsse/io/poly.hpp"
 #include "gsse/pipeline/pipeline.hpp"
 #include "gsse/verify/verify.hpp"
@@ -267,6 +268,27 @@ BOOST_AUTO_TEST_CASE(a_flipped_diagonal_breaks_delaunay) {
   const counts kr(r);
   BOOST_TEST(kr.delaunay == 2u);
   BOOST_TEST(kr.total() == kr.delaunay, all(r));
+}
+
+BOOST_AUTO_TEST_CASE(a_nearly_flat_cell_is_not_skipped) {
+  // a sliver of a mesh of the rotated MOSFET (its vertices nearly on one circle), so flat that
+  // interval arithmetic cannot bound its circumcentre: the verifier falls back to exact rationals
+  const std::array<point3, 4> t{point3{0x1.5934650bdfc42p-2, 0x1.d10c54db40b7cp-2, -0x1.2271e37a27348p-8},
+                                point3{0x1.8e7093e9d1c5fp-2, 0x1.b78f79413ce6fp-2, 0x1.435629fd57ef6p-6},
+                                point3{0x1.9d289f9f184a6p-2, 0x1.cac6e0e0ecb8p-2, 0x1.42ce4443782afp-6},
+                                point3{0x1.76a47c766cccfp-2, 0x1.f77b241aa059ep-2, -0x1.26b111492559p-8}};
+  BOOST_TEST_REQUIRE(geometry::orient3d(t[0], t[1], t[2], t[3]) > 0);
+  point3 c;
+  double r;
+  geometry::exact_circumball(t[0], t[1], t[2], t[3], c, r);
+  for (double at : {0.0, 2.0}) {  // a fifth point at the centre (inside), or two radii away (outside)
+    domain<3> d;
+    for (const auto& x : t) d.add_point(x);
+    d.add_point(c + at * r * point3{0, 0, 1});
+    d.add_segment("flat", 1).add_cell({0, 1, 2, 3});
+    const auto k = counts(verify::check(d, plc<3>{}));
+    BOOST_TEST(k.delaunay == (at == 0.0 ? 1u : 0u));
+  }
 }
 
 BOOST_AUTO_TEST_CASE(facet_hole_points_carve_the_region) {
