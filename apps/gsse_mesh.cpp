@@ -22,7 +22,7 @@ void usage(std::FILE* to) {
   std::fputs(
       "usage: gsse-mesh INPUT [-o OUTPUT] [--size H] [--cloud POINTS.node] [--threads N] [--verify]\n"
       "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
-      "                 [--rules FILE.rules]\n"
+      "                 [--rules FILE.rules] [--no-merge]\n"
       "  INPUT    TetGen .poly/.smesh (3D) or Triangle .poly (2D)\n"
       "  -o       output mesh: .vtu, .msh, or .node (writes .node/.ele/.face beside it)\n"
       "  --size   target element size H (default: none, boundary conforming only)\n"
@@ -32,7 +32,9 @@ void usage(std::FILE* to) {
       "  --fill   interior points with --size: a lattice placed before meshing (default), or points\n"
       "           created by the front rules while meshing\n"
       "  --rules  rule set (see docs/rules.md), validated first: its split rules replace the conformer's,\n"
-      "           its front rules the mesher's (front rules imply --fill rules)\n",
+      "           its front rules the mesher's (front rules imply --fill rules)\n"
+      "  --no-merge keep coplanar facets of one marker apart (by default they are merged across\n"
+      "           edges no other facet uses, as TetGen does without -M)\n",
       to);
 }
 
@@ -40,7 +42,7 @@ struct args {
   std::string input, output, cloud, stats, rules, fill;
   double size = 0;
   unsigned threads = 1;
-  bool verify = false, quiet = false;
+  bool verify = false, quiet = false, no_merge = false;
   std::size_t max_steiner = 2'000'000;
 };
 
@@ -54,6 +56,7 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.threads = a.threads;
   o.verify = a.verify;
   o.conform.max_steiner = a.max_steiner;
+  o.conform.merge_coplanar = !a.no_merge;
   gsse::rules::rule_set custom;
   if (!a.rules.empty()) {
     custom = gsse::rules::load_rules(a.rules);
@@ -165,6 +168,8 @@ int main(int argc, char** argv) {
         a.max_steiner = std::stoul(value());
       } else if (s == "--verify") {
         a.verify = true;
+      } else if (s == "--no-merge") {
+        a.no_merge = true;
       } else if (s == "--quiet") {
         a.quiet = true;
       } else if (!s.empty() && s[0] == '-') {
