@@ -26,14 +26,17 @@ namespace {
 using rules::element_kind;
 using rules::relation;
 
+/// Grid cells for `count` points (pts.size() if 0) in the box of pts: about one point per cell if
+/// they filled the box, never above `size` when given.
 template <std::size_t D>
-double cell_size_for(const std::vector<point<D>>& pts, double size) {
+double cell_size_for(const std::vector<point<D>>& pts, double size, std::size_t count = 0) {
   point<D> lo = pts[0], hi = pts[0];
   for (const auto& q : pts)
     for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
   double ext = 0;
   for (std::size_t k = 0; k < D; ++k) ext = std::max(ext, hi[k] - lo[k]);
-  double h = ext / std::max(1.0, std::pow(static_cast<double>(pts.size()), 1.0 / static_cast<double>(D)));
+  if (count == 0) count = pts.size();
+  double h = ext / std::max(1.0, std::pow(static_cast<double>(count), 1.0 / static_cast<double>(D)));
   if (size > 0) h = std::min(h, size);
   return h > 0 ? h : 1.0;
 }
@@ -88,7 +91,7 @@ template <std::size_t D>
 class state {
  public:
   state(const plc<D>& p, const std::vector<point<D>>& volume, const options& o)
-      : plc_(p), opt_(o), grid_h_(p.points.empty() ? 1.0 : cell_size_for(p.points, o.size)),
+      : plc_(p), opt_(o), grid_h_(p.points.empty() ? 1.0 : cell_size_for(p.points, o.size, p.points.size() + volume.size())),
         grid_(p.points.empty() ? point<D>{} : p.points[0], grid_h_) {
     if (p.points.empty()) throw conform_error(p.source + ": the PLC has no points");
     out_.points = p.points;
@@ -100,6 +103,7 @@ class state {
       out_.homes.push_back({home::free, 0});
     }
     out_.volume_points = volume.size();
+    grid_sized_for_ = out_.points.size();
     box_lo_ = box_hi_ = out_.points[0];
     for (vertex_id v = 0; v < out_.points.size(); ++v) {
       grid_.insert(v, out_.points[v]);
@@ -122,7 +126,16 @@ class state {
     out_.points.push_back(q);
     out_.homes.push_back(h);
     const auto v = static_cast<vertex_id>(out_.points.size() - 1);
-    grid_.insert(v, q);
+    if (out_.points.size() > 4 * grid_sized_for_) {
+      // boundary refinement far beyond the points the grid was made for (a fine surface in a
+      // coarse box): cells as for today's count, else each lookup scans crowded cells
+      grid_sized_for_ = out_.points.size();
+      grid_h_ = std::min(grid_h_, cell_size_for(out_.points, opt_.size, grid_sized_for_));
+      grid_ = hash_grid<D>(out_.points[0], grid_h_);
+      for (vertex_id w = 0; w < out_.points.size(); ++w) grid_.insert(w, out_.points[w]);
+    } else {
+      grid_.insert(v, q);
+    }
     for (std::size_t k = 0; k < D; ++k) box_lo_[k] = std::min(box_lo_[k], q[k]), box_hi_[k] = std::max(box_hi_[k], q[k]);
     ++out_.steiner;
     return v;
@@ -190,23 +203,29 @@ class state {
     }
   }
 
-  /// Vertices on the diametral sphere of (a,b) or strictly inside: returns the encroacher with the
-  /// smallest id (deterministic), or no_vertex.
+  /// The box of the ball (c, r) within the bounding box of all points (no cell outside holds one).
+  void ball_box(const point<D>& c, double r, point<D>& lo, point<D>& hi) const {
+    for (std::size_t k = 0; k < D; ++k) lo[k] = std::max(c[k] - r, box_lo_[k]), hi[k] = std::min(c[k] + r, box_hi_[k]);
+  }
+
+  /// Vertices on the diametral sphere of (a,b) or strictly inside: returns an encroacher, the one
+  /// of smallest id in the nearest ring of grid cells about the ball's centre that holds one
+  /// (deterministic; a large ball is not scanned whole), or no_vertex.
   vertex_id segment_encroacher(vertex_id a, vertex_id b, std::vector<vertex_id>& ties) const {
     const auto& p = out_.points;
     const auto [c, r] = detail::diametral_bound(p[a], p[b]);
     point<D> lo, hi;
-    for (std::size_t k = 0; k < D; ++k) lo[k] = c[k] - r, hi[k] = c[k] + r;
+    ball_box(c, r, lo, hi);
     vertex_id strict = no_vertex;
     ties.clear();
     const double r2 = r * r;
-    grid_.visit(lo, hi, [&](vertex_id y) {
+    grid_.visit_rings(c, lo, hi, [&](vertex_id y) {
       if (y == a || y == b || (strict != no_vertex && y > strict)) return;
       if (squared_distance(c, p[y]) > r2) return;  // double prefilter, padded
       const int s = geometry::in_diametral(p[a], p[b], p[y]);
       if (s > 0) strict = y;
       else if (s == 0) ties.push_back(y);
-    });
+    }, [&] { return strict != no_vertex; });
     if (strict != no_vertex) return strict;
     if (ties.empty()) return no_vertex;
     std::sort(ties.begin(), ties.end());
@@ -479,6 +498,7 @@ class state {
   boundary<D> out_;
   double grid_h_;
   hash_grid<D> grid_;
+  std::size_t grid_sized_for_ = 0;  // points the cell size was chosen for
   point<D> box_lo_{}, box_hi_{};  // bounding box of all points
   rules::rule_set own_rules_;
   const rules::rule_set* rules_;
@@ -503,6 +523,13 @@ struct facet_state {
   std::vector<vertex_id> interior;                                 // Steiner and embedded points
   std::set<vertex_id> corners;                                     // PLC vertices of the facet
   std::vector<std::array<vertex_id, 3>> triangles;                 // ccw in the projection
+  // the triangles by cells of a uniform grid over their projected boxes (locate())
+  struct triangle_cells {
+    point2 lo{};
+    double inv = 1;
+    long nx = 0, ny = 0;
+    std::vector<std::uint32_t> start, items;
+  } cells;
   std::vector<vertex_id> wrapped;                                  // sorted vertices when triangulated
   std::size_t boundary_size = 0;                                   // chain vertices when triangulated
   std::array<bool, 3> constant{};                                  // coordinate shared by all corners
@@ -680,6 +707,7 @@ class state3 : public state<3> {
     } catch (const front::front_error& e) {
       throw conform_error(std::string(e.what()) + " (facet polygons overlap or self-intersect?)");
     }
+    index_triangles(f);
     S.wrapped = std::move(vs);
   }
 
@@ -698,7 +726,8 @@ class state3 : public state<3> {
              [&](std::uint32_t f) { return static_cast<double>(vertex_count(f)); });
   }
 
-  /// The encroacher of subfacet abc (smallest id strictly inside its closed equatorial ball, or a
+  /// The encroacher of subfacet abc (strictly inside its closed equatorial ball: the smallest id in
+  /// the nearest ring of grid cells holding one, see segment_encroacher; or a
   /// tie that keeps it out of the cospherical Delaunay set), or no_vertex. Read-only: facets are
   /// checked in parallel, each thread with its own `ties` scratch. (cc, r): the ball's bound,
   /// detail::equatorial_bound.
@@ -706,17 +735,17 @@ class state3 : public state<3> {
                              std::vector<vertex_id>& ties) const {
     const auto& p = out_.points;
     point3 lo, hi;
-    for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
+    ball_box(cc, r, lo, hi);
     vertex_id strict = no_vertex;
     ties.clear();
     const double r2 = r * r;
-    grid_.visit(lo, hi, [&](vertex_id y) {
+    grid_.visit_rings(cc, lo, hi, [&](vertex_id y) {
       if (y == a || y == b || y == c || (strict != no_vertex && y > strict)) return;
       if (squared_distance(cc, p[y]) > r2) return;  // double prefilter, padded
       const int s = geometry::in_equatorial(p[a], p[b], p[c], p[y]);
       if (s > 0) strict = y;
       else if (s == 0) ties.push_back(y);
-    });
+    }, [&] { return strict != no_vertex; });
     if (strict != no_vertex) return strict;
     if (ties.empty()) return no_vertex;
     std::sort(ties.begin(), ties.end());
@@ -766,31 +795,83 @@ class state3 : public state<3> {
   }
 
   /// The triangle of facet f containing q (closed), or -1.
+  /// Files the triangles of facet f in a uniform grid of about one triangle per cell, by their
+  /// projected boxes (padded: the exact test decides), so that locate() tests a few of them.
+  void index_triangles(std::uint32_t f) {
+    auto& S = facets_[f];
+    auto& C = S.cells;
+    const auto& p = out_.points;
+    C = {};
+    if (S.triangles.empty()) return;
+    std::vector<std::array<point2, 2>> box(S.triangles.size());
+    point2 lo{1e300, 1e300}, hi{-1e300, -1e300};
+    for (std::size_t t = 0; t < S.triangles.size(); ++t) {
+      point2 a{1e300, 1e300}, b{-1e300, -1e300};
+      for (auto v : S.triangles[t]) {
+        const point2 x = geometry::project(p[v], S.axis);
+        for (std::size_t k = 0; k < 2; ++k) a[k] = std::min(a[k], x[k]), b[k] = std::max(b[k], x[k]);
+      }
+      for (std::size_t k = 0; k < 2; ++k) {
+        const double pad = 1e-9 * (b[k] - a[k]) + 1e-300;
+        a[k] -= pad, b[k] += pad;
+        lo[k] = std::min(lo[k], a[k]), hi[k] = std::max(hi[k], b[k]);
+      }
+      box[t] = {a, b};
+    }
+    const double area = std::max((hi[0] - lo[0]) * (hi[1] - lo[1]), 1e-300);
+    const double h = std::sqrt(area / static_cast<double>(S.triangles.size()));
+    C.lo = lo;
+    C.inv = 1 / h;
+    C.nx = std::clamp(static_cast<long>((hi[0] - lo[0]) * C.inv) + 1, 1l, 4096l);
+    C.ny = std::clamp(static_cast<long>((hi[1] - lo[1]) * C.inv) + 1, 1l, 4096l);
+    auto range = [&](const point2& a, const point2& b, long& x0, long& x1, long& y0, long& y1) {
+      x0 = std::clamp(static_cast<long>((a[0] - lo[0]) * C.inv), 0l, C.nx - 1);
+      x1 = std::clamp(static_cast<long>((b[0] - lo[0]) * C.inv), 0l, C.nx - 1);
+      y0 = std::clamp(static_cast<long>((a[1] - lo[1]) * C.inv), 0l, C.ny - 1);
+      y1 = std::clamp(static_cast<long>((b[1] - lo[1]) * C.inv), 0l, C.ny - 1);
+    };
+    C.start.assign(static_cast<std::size_t>(C.nx * C.ny) + 1, 0);
+    for (int pass = 0; pass < 2; ++pass) {
+      for (std::uint32_t t = 0; t < box.size(); ++t) {
+        long x0, x1, y0, y1;
+        range(box[t][0], box[t][1], x0, x1, y0, y1);
+        for (long y = y0; y <= y1; ++y)
+          for (long x = x0; x <= x1; ++x) {
+            const auto c = static_cast<std::size_t>(y * C.nx + x);
+            if (pass == 0) ++C.start[c + 1];
+            else C.items[C.start[c]++] = t;
+          }
+      }
+      if (pass == 0) {
+        std::partial_sum(C.start.begin(), C.start.end(), C.start.begin());
+        C.items.resize(C.start.back());
+      } else {  // the fill advanced each start to the next cell's: shift back
+        for (std::size_t c = C.start.size() - 1; c > 0; --c) C.start[c] = C.start[c - 1];
+        C.start[0] = 0;
+      }
+    }
+  }
+
+  /// The triangle of facet f containing q (closed), or -1: the hint first (a split point is
+  /// usually in its triangle), then the triangles filed in q's cell, in ascending order.
   long locate(std::uint32_t f, const point3& q, std::size_t hint = 0) const {
     const auto& S = facets_[f];
+    const auto& C = S.cells;
     const auto& p = out_.points;
-    const point2 pq = geometry::project(q, S.axis);
-    const std::size_t n = S.triangles.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t t = (hint + k) % n;  // from the hint: a split point is usually in its triangle
+    auto inside = [&](std::size_t t) {
       const auto& T = S.triangles[t];
-      // double bounding-box prefilter (padded), exact test after
-      bool out = false;
-      for (int a = 0; a < 2 && !out; ++a) {
-        double lo = 1e300, hi = -1e300;
-        for (auto v : T) {
-          const double c = geometry::project(p[v], S.axis)[static_cast<std::size_t>(a)];
-          lo = std::min(lo, c), hi = std::max(hi, c);
-        }
-        const double pad = 1e-9 * (hi - lo) + 1e-300;
-        out = pq[static_cast<std::size_t>(a)] < lo - pad || pq[static_cast<std::size_t>(a)] > hi + pad;
-      }
-      if (out) continue;
-      if (geometry::orient_projected(p[T[0]], p[T[1]], q, S.axis) >= 0 &&
-          geometry::orient_projected(p[T[1]], p[T[2]], q, S.axis) >= 0 &&
-          geometry::orient_projected(p[T[2]], p[T[0]], q, S.axis) >= 0)
-        return static_cast<long>(t);
-    }
+      return geometry::orient_projected(p[T[0]], p[T[1]], q, S.axis) >= 0 &&
+             geometry::orient_projected(p[T[1]], p[T[2]], q, S.axis) >= 0 &&
+             geometry::orient_projected(p[T[2]], p[T[0]], q, S.axis) >= 0;
+    };
+    if (hint < S.triangles.size() && inside(hint)) return static_cast<long>(hint);
+    if (C.start.empty()) return -1;
+    const point2 pq = geometry::project(q, S.axis);
+    const double x = (pq[0] - C.lo[0]) * C.inv, y = (pq[1] - C.lo[1]) * C.inv;
+    if (!(x >= 0 && y >= 0 && x < static_cast<double>(C.nx) + 1 && y < static_cast<double>(C.ny) + 1)) return -1;
+    const auto c = static_cast<std::size_t>(std::min(static_cast<long>(y), C.ny - 1) * C.nx + std::min(static_cast<long>(x), C.nx - 1));
+    for (auto k = C.start[c]; k < C.start[c + 1]; ++k)
+      if (inside(C.items[k])) return static_cast<long>(C.items[k]);
     return -1;
   }
 
