@@ -37,7 +37,7 @@ mesh_once() {  # name input poly mode [gsse-mesh options...]
   case $rc in
     0) verdict=PASS ;;
     124) verdict="TIMEOUT (${TIMEOUT} s)" ;;
-    1) verdict="ERROR: $(head -1 "$dir/stderr" | sed 's/^gsse-mesh: error: //' | cut -c1-160)" ;;
+    1) verdict="ERROR: $(head -1 "$dir/stderr" | sed "s|^gsse-mesh: error: ||; s|$input: ||" | cut -c1-160)" ;;
     3) verdict="VERIFY-FAIL: $(head -1 "$dir/stderr" | sed 's/^gsse-mesh: verify: //' | cut -c1-160)" ;;
     *) verdict="CRASH (exit $rc): $(tail -1 "$dir/stderr" | cut -c1-120)" ;;
   esac

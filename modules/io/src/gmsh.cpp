@@ -496,6 +496,17 @@ msh_content parse_msh(const std::string& path, const std::string& data) {
   return m;
 }
 
+// Duplicate coordinates are an error, as for every other reader: `fail(a, b)` (a < b, the point
+// that repeats a) for the first pair in coordinate order.
+template <std::size_t D, class Fail>
+void check_distinct(const std::vector<point<D>>& pts, Fail&& fail) {
+  std::vector<std::size_t> order(pts.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return lex_less(pts[a], pts[b]) || (pts[a] == pts[b] && a < b); });
+  for (std::size_t k = 1; k < order.size(); ++k)
+    if (pts[order[k]] == pts[order[k - 1]]) fail(std::min(order[k], order[k - 1]), std::max(order[k], order[k - 1]));
+}
+
 // Error at a position of the file: its line (text) or byte offset (binary).
 [[noreturn]] void fail_in_file(const std::string& path, const std::string& data, bool binary, std::size_t pos, const std::string& what) {
   if (binary) throw io_error::at_byte(path, pos, what);
@@ -520,16 +531,9 @@ domain<D> build(const std::string& path, const std::string& data, msh_content& m
     }
     pts.push_back(p);
   }
-  {  // duplicate coordinates are an error, as for every other reader
-    std::vector<std::size_t> order(pts.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](auto a, auto b) { return lex_less(pts[a], pts[b]) || (pts[a] == pts[b] && a < b); });
-    for (std::size_t k = 1; k < order.size(); ++k)
-      if (pts[order[k]] == pts[order[k - 1]]) {
-        const auto a = std::min(order[k], order[k - 1]), b = std::max(order[k], order[k - 1]);
-        fail_at(m.node_at[b], "duplicate point: node " + std::to_string(b + 1) + " (in file order) repeats node " + std::to_string(a + 1));
-      }
-  }
+  check_distinct(pts, [&](std::size_t a, std::size_t b) {
+    fail_at(m.node_at[b], "duplicate point: node " + std::to_string(b + 1) + " (in file order) repeats node " + std::to_string(a + 1));
+  });
   std::map<int, segment<D>*> seg_of;
   for (auto& blk : m.blocks) {
     if (blk.dim != static_cast<int>(D)) continue;
@@ -716,18 +720,10 @@ plc<3> read_msh_plc(const std::string& path, std::vector<plc_volume>* volumes) {
       node_of.push_back(i);
     }
   auto tag = [&](vertex_id v) { return std::to_string(m.node_tags[node_of[v]]); };
-  {  // duplicate coordinates are an error, as for every other reader
-    const auto& pts = out.points;
-    std::vector<std::size_t> order(pts.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](auto a, auto b) { return lex_less(pts[a], pts[b]) || (pts[a] == pts[b] && a < b); });
-    for (std::size_t k = 1; k < order.size(); ++k)
-      if (pts[order[k]] == pts[order[k - 1]]) {
-        const auto a = std::min(order[k], order[k - 1]), b = std::max(order[k], order[k - 1]);
-        fail_at(m.node_at[node_of[b]], "duplicate point: node " + tag(static_cast<vertex_id>(b)) + " repeats node " +
-                                           tag(static_cast<vertex_id>(a)));
-      }
-  }
+  check_distinct(out.points, [&](std::size_t a, std::size_t b) {
+    fail_at(m.node_at[node_of[b]], "duplicate point: node " + tag(static_cast<vertex_id>(b)) + " repeats node " +
+                                       tag(static_cast<vertex_id>(a)));
+  });
   const auto lines = m.binary ? std::vector<std::size_t>(element_at.size(), 0) : lines_of(data, element_at);
   std::map<int, std::vector<std::size_t>> facets_of;  // surface entity -> its facets
   for (const auto& b : m.blocks) {
