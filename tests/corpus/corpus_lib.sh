@@ -37,7 +37,7 @@ mesh_once() {  # name input poly mode [gsse-mesh options...]
   case $rc in
     0) verdict=PASS ;;
     124) verdict="TIMEOUT (${TIMEOUT} s)" ;;
-    1) verdict="ERROR: $(head -1 "$dir/stderr" | sed "s|^gsse-mesh: error: ||; s|$input: ||" | cut -c1-160)" ;;
+    1) verdict="ERROR: $(head -1 "$dir/stderr" | sed "s|^gsse-mesh: error: ||; s|$input|${input##*/}|g" | cut -c1-160)" ;;
     3) verdict="VERIFY-FAIL: $(head -1 "$dir/stderr" | sed 's/^gsse-mesh: verify: //' | cut -c1-160)" ;;
     *) verdict="CRASH (exit $rc): $(tail -1 "$dir/stderr" | cut -c1-120)" ;;
   esac
@@ -63,7 +63,7 @@ mesh_case() {  # name input [size]
   local poly=$dir/plc.poly failed=0
   if ! timeout -k 5 "$TIMEOUT" "$MESH" "$input" --plc-out "$poly" > "$dir/read.out" 2>&1; then
     printf '%-28s %-14s %8s %9s %7s %7s  %s\n' "$name" "read" - - - - \
-      "READ-ERROR: $(head -1 "$dir/read.out" | sed 's/^gsse-mesh: error: //' | cut -c1-160)" > "$dir/result"
+      "READ-ERROR: $(head -1 "$dir/read.out" | sed "s|^gsse-mesh: error: ||; s|$input|${input##*/}|g" | cut -c1-160)" > "$dir/result"
     echo 2 > "$dir/failed"
     return
   fi
