@@ -46,11 +46,17 @@ std::optional<point<D>> segment_candidate(split_action a, const point<D>& p0, co
   switch (a) {
     case split_action::shell: {
       if (!shell) return std::nullopt;
-      const point<D>& far = *shell == p0 ? p1 : p0;
-      const double l = distance(*shell, far);
+      // the centre is one end, or lies on the line behind the nearer end (the vertex of a
+      // protecting ball whose sphere the subsegment starts on)
+      const double d0 = distance(*shell, p0), d1 = distance(*shell, p1);
+      const point<D>& far = d0 > d1 ? p0 : p1;
+      const double dn = std::min(d0, d1), df = std::max(d0, d1);
       const auto u = normalized<D>(far - *shell);
       if (!u) return std::nullopt;
-      return *shell + shell_radius(l) * *u;
+      if (dn == 0) return *shell + shell_radius(df) * *u;
+      const double r = snap_to_shell(0.5 * (dn + df));  // a power of two, beyond the near end
+      if (!(r > dn * 1.1 && r < df)) return std::nullopt;
+      return *shell + r * *u;
     }
     case split_action::project:
       return p0 + (dot(e - p0, d) / dot(d, d)) * d;
@@ -109,8 +115,10 @@ double shell_radius(double l) {
 double snap_to_shell(double d) {
   if (!(d > 0) || !std::isfinite(d)) return d;
   int e = 0;
-  const double m = std::frexp(d, &e);  // d = m * 2^e, m in [0.5, 1)
-  return m == 0.5 ? d : std::ldexp(1.0, e - 1);
+  // a distance a hair below a shell is on it: points on slanted carriers sit 1e-10 of their
+  // element off their construction, and their images must not drop a shell each time
+  std::frexp(d * (1 + 1e-8), &e);  // d (1 + 1e-8) = m * 2^e, m in [0.5, 1)
+  return std::ldexp(1.0, e - 1);
 }
 
 std::vector<double> unit_coordinates(std::span<const point2> el, const point2& p) {
@@ -181,6 +189,10 @@ std::optional<point3> split_candidate(split_action a, std::span<const point3> el
       const point3 g = centroid - q0;
       const auto w = normalized<3>(g - dot(g, *u) * *u);  // in the element's plane, towards it
       if (!w) return std::nullopt;
+      // a rotation for facets folding over the element (a dihedral angle below 90 degrees); an
+      // encroacher beyond the edge, on a facet that continues the element's nearly flat, would
+      // be mirrored into a cocircular copy of itself
+      if (!(dot(e - foot, *w) > 0)) return std::nullopt;
       r = foot + snap_to_shell(distance(e, foot)) * *w;
       break;
     }
@@ -191,20 +203,21 @@ std::optional<point3> split_candidate(split_action a, std::span<const point3> el
 
 std::optional<split_choice<2>> split_point(const split_rule& r, std::span<const point2, 2> seg, const point2& e,
                                            const std::optional<point2>& shared_vertex, const std::optional<point2>& shell,
-                                           const std::function<bool(const point2&)>& usable) {
+                                           const std::function<bool(const point2&, split_action)>& usable) {
   for (std::size_t i = 0; i < r.steps.size(); ++i) {
     const auto c = split_candidate(r.steps[i].action, seg, e, shared_vertex, shell);
-    if (c && is_finite(*c) && accepts(r.steps[i], std::span<const point2>(seg), *c) && (!usable || usable(*c)))
+    if (c && is_finite(*c) && accepts(r.steps[i], std::span<const point2>(seg), *c) && (!usable || usable(*c, r.steps[i].action)))
       return split_choice<2>{*c, r.steps[i].action, i};
   }
   return std::nullopt;
 }
 
 std::optional<split_choice<3>> split_point(const split_rule& r, std::span<const point3> el, const point3& e,
-                                           const shared3& shared, const std::function<bool(const point3&)>& usable) {
+                                           const shared3& shared, const std::function<bool(const point3&, split_action)>& usable) {
   for (std::size_t i = 0; i < r.steps.size(); ++i) {
     const auto c = split_candidate(r.steps[i].action, el, e, shared);
-    if (c && accepts(r.steps[i], el, *c) && (!usable || usable(*c))) return split_choice<3>{*c, r.steps[i].action, i};
+    if (c && accepts(r.steps[i], el, *c) && (!usable || usable(*c, r.steps[i].action)))
+      return split_choice<3>{*c, r.steps[i].action, i};
   }
   return std::nullopt;
 }

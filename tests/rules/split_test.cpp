@@ -86,7 +86,7 @@ BOOST_AUTO_TEST_CASE(shell_splits_about_the_small_angle_end) {
 }
 
 BOOST_AUTO_TEST_CASE(a_rejected_candidate_falls_through_to_the_next_step) {
-  const auto c = split_point(rule2(relation::free), seg, {0.3, 0.2}, {}, {}, [](const point2& q) { return q[0] != 0.3; });
+  const auto c = split_point(rule2(relation::free), seg, {0.3, 0.2}, {}, {}, [](const point2& q, split_action) { return q[0] != 0.3; });
   BOOST_REQUIRE(c);
   BOOST_TEST((c->action == split_action::midpoint));
 }

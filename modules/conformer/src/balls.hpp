@@ -4,7 +4,10 @@
 // encroachment test, so they must never be too small. A subfacet too flat for a reliable double
 // circumcentre gets its ball constructed exactly (rare).
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -20,6 +23,29 @@ double magnitude(const point<D>& c) {
   double m = 0;
   for (double x : c) m = std::max(m, std::abs(x));
   return m;
+}
+
+/// Two deterministic pseudo-random numbers in [-1, 1] from the bits of q. Split points on slanted
+/// carriers are moved by them, a tiny fraction of their element: symmetric constructions (edge
+/// midpoints, shells, mirror projections) there make configurations cocircular up to rounding,
+/// whose flat tetrahedra rounding can make Delaunay; off by 1e-10 they are not ties at all.
+template <std::size_t D>
+std::array<double, 2> jitter(const point<D>& q) {
+  std::uint64_t h = 0x9E3779B97F4A7C15ull;
+  for (double x : q) {
+    std::uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    h ^= b + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+  }
+  auto next = [&] {  // splitmix64
+    h += 0x9E3779B97F4A7C15ull;
+    std::uint64_t z = h;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * 0x1.0p-52 - 1.0;
+  };
+  return {next(), next()};
 }
 
 /// Centre and radius of a ball holding the closed diametral ball of ab.

@@ -1,6 +1,7 @@
 #include "gsse/conformer/conformer.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -104,6 +105,12 @@ class state {
     }
     out_.volume_points = volume.size();
     grid_sized_for_ = out_.points.size();
+    {
+      point<D> lo = p.points[0], hi = lo;
+      for (const auto& q : p.points)
+        for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+      model_size_ = distance(lo, hi) > 0 ? distance(lo, hi) : 1;
+    }
     box_lo_ = box_hi_ = out_.points[0];
     for (vertex_id v = 0; v < out_.points.size(); ++v) {
       grid_.insert(v, out_.points[v]);
@@ -154,12 +161,14 @@ class state {
     return it->second;
   }
 
-  /// True if a point lies within 1e-8 * scale of q (scale: the size of the element q splits). A
-  /// split point there would be the same point (an encroacher rotated onto its image of an
-  /// earlier split, an ulp away): it would not end the encroachment, and the next round would
-  /// make it again. The split point is a construction, so this bound decides no topology.
+  /// True if a point lies within 1e-8 * scale of q (scale: the size of the element q splits), or
+  /// within 1e-11 of the model size. A split point there would be the same point (an encroacher
+  /// rotated onto its image of an earlier split, an ulp away): it would not end the
+  /// encroachment, and the next round would make it again; and a slanted facet's plane
+  /// coordinates (rounded once, front::wrap_frame) cannot tell points that close apart. The split
+  /// point is a construction, so this bound decides no topology.
   bool occupied(const point<D>& q, double scale) const {
-    const double r = 1e-8 * scale;
+    const double r = std::max(1e-8 * scale, 1e-11 * model_size_);
     point<D> lo, hi;
     for (std::size_t k = 0; k < D; ++k) lo[k] = q[k] - r, hi[k] = q[k] + r;
     return !grid_.visit(lo, hi, [&](vertex_id y) { return squared_distance(out_.points[y], q) > r * r; });
@@ -183,24 +192,44 @@ class state {
   }
 
   /// Uniform pre-split of every PLC edge longer than the target size.
+  /// The radius of vertex v's protecting ball, 0 if it has none.
+  double ball(vertex_id v) const { return v < ball_.size() ? ball_[v] : 0; }
+
+  /// Every PLC edge split where it leaves the protecting balls of its ends, and with a size
+  /// uniformly (points in or near a ball left out).
   void presplit_edges() {
-    if (opt_.size <= 0) return;
     for (std::uint32_t e = 0; e < edges_.size(); ++e) {
-      // from the lexicographically smaller end, so parallel edges get identical (mirror) splits
-      point<D> a = out_.points[edges_[e].u], b = out_.points[edges_[e].v];
-      if (lex_less(b, a)) std::swap(a, b);
-      const auto n = static_cast<int>(std::ceil(distance(a, b) / opt_.size - 1e-9));
-      std::vector<vertex_id> inner;
-      for (int i = 1; i < n; ++i) {
-        const double t = static_cast<double>(i) / n;
-        inner.push_back(add_point(on_edge(a + t * (b - a), e), {home::edge, e}));
+      const auto& E = edges_[e];
+      const point<D> pu = out_.points[E.u], pv = out_.points[E.v];
+      const double len = distance(pu, pv), ru = ball(E.u), rv = ball(E.v);
+      std::vector<std::pair<double, point<D>>> at;  // (distance from u, point)
+      if (ru > 0) at.push_back({ru, on_edge(pu + (ru / len) * (pv - pu), e)});
+      if (rv > 0) at.push_back({len - rv, on_edge(pv + (rv / len) * (pu - pv), e)});
+      if (opt_.size > 0) {
+        // from the lexicographically smaller end, so parallel edges get identical (mirror) splits
+        point<D> a = pu, b = pv;
+        const bool flip = lex_less(b, a);
+        if (flip) std::swap(a, b);
+        const auto n = static_cast<int>(std::ceil(len / opt_.size - 1e-9));
+        for (int i = 1; i < n; ++i) {
+          const double t = static_cast<double>(i) / n, s = (flip ? 1 - t : t) * len;
+          if ((ru > 0 && s < 1.5 * ru) || (rv > 0 && len - s < 1.5 * rv)) continue;
+          at.push_back({s, on_edge(a + t * (b - a), e, len / n)});
+        }
       }
-      if (out_.points[edges_[e].u] != a) std::reverse(inner.begin(), inner.end());
-      std::vector<vertex_id> chain{edges_[e].u};
-      chain.insert(chain.end(), inner.begin(), inner.end());
-      chain.push_back(edges_[e].v);
+      std::sort(at.begin(), at.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      std::vector<vertex_id> chain{E.u};
+      for (const auto& [s, q] : at) chain.push_back(add_point(q, {home::edge, e}));
+      chain.push_back(E.v);
       edges_[e].chain = std::move(chain);
     }
+  }
+
+  /// Subsegment i of edge e runs from an end to where it leaves that end's protecting ball: it is
+  /// never split (nothing lies in the ball to encroach it).
+  bool protected_subsegment(std::uint32_t e, std::size_t i) const {
+    const auto& E = edges_[e];
+    return (i == 0 && ball(E.u) > 0) || (i + 2 == E.chain.size() && ball(E.v) > 0);
   }
 
   /// The box of the ball (c, r) within the bounding box of all points (no cell outside holds one).
@@ -298,15 +327,18 @@ class state {
     const auto& E = edges_[e];
     const auto& p = out_.points;
     const vertex_id a = E.chain[i], b = E.chain[i + 1];
-    const bool at_u = a == E.u && acute_[E.u], at_v = b == E.v && acute_[E.v];
+    // shells about a small-angle end, also from where the edge leaves its protecting ball
+    const bool at_u = (a == E.u && acute_[E.u]) || (i == 1 && ball(E.u) > 0),
+               at_v = (b == E.v && acute_[E.v]) || (i + 3 == E.chain.size() && ball(E.v) > 0);
     const point<D>* shell = at_u != at_v ? &p[at_u ? E.u : E.v] : nullptr;
-    const point<D> q = on_edge(split_point_of(element_kind::subsegment, rel, {p[a], p[b]}, enc, shared, nullptr, shell, fired), e);
+    const double len = distance(p[a], p[b]);
+    const point<D> q = on_edge(split_point_of(element_kind::subsegment, rel, {p[a], p[b]}, enc, shared, nullptr, shell, fired), e, len);
     auto strictly_inside = [&](const point<D>& x) {
       return x != p[a] && x != p[b] && dot(x - p[a], p[b] - p[a]) > 0 && dot(x - p[b], p[a] - p[b]) > 0;
     };
-    const double l = distance(p[a], p[b]);
+    const double l = len;
     if (strictly_inside(q) && !occupied(q, l)) return q;
-    const point<D> m = on_edge(0.5 * (p[a] + p[b]), e);
+    const point<D> m = on_edge(0.5 * (p[a] + p[b]), e, len);
     fired = rules::split_action::midpoint;
     if (strictly_inside(m) && !occupied(m, l)) return m;
     throw conform_error(plc_.source + ": the boundary segment between vertices " + std::to_string(a + 1) + " and " +
@@ -319,7 +351,8 @@ class state {
   /// receives the action of the rule step that gave the point.
   point<D> split_point_of(element_kind kind, relation rel, const std::vector<point<D>>& elem, const point<D>& enc,
                           const point<D>* shared, const std::array<point3, 2>* shared_edge, const point<D>* shell,
-                          std::optional<rules::split_action>& fired) const {
+                          std::optional<rules::split_action>& fired,
+                          const std::function<bool(const point<D>&)>* in_facet = nullptr) const {
     const rules::split_rule* r = rules_->split.lookup(kind, rel);
     if (!r) throw conform_error("conformer rules have no rule for " + std::string(rules::to_string(kind)) + "/" +
                                 std::string(rules::to_string(rel)));
@@ -327,7 +360,12 @@ class state {
     double scale = 1e300;
     for (std::size_t i = 0; i < elem.size(); ++i)
       for (std::size_t j = i + 1; j < elem.size(); ++j) scale = std::min(scale, distance(elem[i], elem[j]));
-    auto usable = [&](const point<D>& q) { return !occupied(q, scale); };
+    // and a subfacet's point from a projection or rotation must lie in the facet (else the next
+    // action: the circumcentre, which when outside splits the subsegment it encroaches)
+    auto usable = [&](const point<D>& q, rules::split_action a) {
+      if (in_facet && a != rules::split_action::midpoint && !(*in_facet)(q)) return false;
+      return !occupied(q, scale);
+    };
     if constexpr (D == 2) {
       std::optional<point2> sv;
       if (shared) sv = *shared;
@@ -389,11 +427,16 @@ class state {
   /// need be, so that it lies in the closed region of one of the edge's facets in every
   /// coordinate projection (exact orientations against the edge's end vertices): a point
   /// rounded to the outside of every facet through the edge would belong to none of them.
-  point<D> on_edge(point<D> q, std::uint32_t e) const {
+  point<D> on_edge(point<D> q, std::uint32_t e, double scale = 0) const {
     const auto& E = edges_[e];
     const point<D>&a = out_.points[E.u], &b = out_.points[E.v];
     q = snap_to_edge(q, a, b);
     if constexpr (D == 3) {
+      // along an edge parallel to no axis, off the exact split point by a pseudo-random 1e-10 of
+      // the subsegment (detail::jitter): see the design decision on slanted carriers
+      int constant = 0;
+      for (std::size_t k = 0; k < 3; ++k) constant += a[k] == b[k];
+      if (constant < 2 && scale > 0) q = snap_to_edge(q + (1e-10 * scale * detail::jitter(q)[0]) * (1.0 / distance(a, b)) * (b - a), a, b);
       auto inside = [&](const point3& x) {
         for (int k = 0; k < 3; ++k) {
           const int want = E.inside_sign[static_cast<std::size_t>(k)];
@@ -463,7 +506,8 @@ class state {
       for (std::uint32_t e = 0; e < edges_.size(); ++e) {
         if (!encroached[e] && (added.empty || !touched(e))) continue;
         for (std::size_t i = 0; i + 1 < edges_[e].chain.size();) {
-          const vertex_id y = segment_encroacher(edges_[e].chain[i], edges_[e].chain[i + 1], ties);
+          const vertex_id y =
+              protected_subsegment(e, i) ? no_vertex : segment_encroacher(edges_[e].chain[i], edges_[e].chain[i + 1], ties);
           if (y == no_vertex) {
             ++i;
             continue;
@@ -500,6 +544,7 @@ class state {
   hash_grid<D> grid_;
   std::size_t grid_sized_for_ = 0;  // points the cell size was chosen for
   point<D> box_lo_{}, box_hi_{};  // bounding box of all points
+  double model_size_ = 1;         // diagonal of the PLC's bounding box
   rules::rule_set own_rules_;
   const rules::rule_set* rules_;
   std::vector<plc_edge> edges_;
@@ -507,6 +552,7 @@ class state {
   std::map<vertex_id, std::vector<std::uint32_t>> vertex_edges_;
   std::size_t segments_clean_upto_ = 0;  // points when conform_segments last returned
   std::vector<char> acute_;               // per PLC vertex: a small angle meets there (find_acute)
+  std::vector<double> ball_;              // per PLC vertex: radius of its protecting ball, 0 for none
   // GSSE_CONFORM_TRACE=1: per round, the number of splits and which rule/action fired how often
   bool trace_on_ = std::getenv("GSSE_CONFORM_TRACE") != nullptr;
   std::map<std::string, std::size_t> trace_;
@@ -522,6 +568,7 @@ struct facet_state {
   std::vector<std::pair<std::uint32_t, bool>> sides;               // (edge, forward): facet on the left
   std::vector<vertex_id> interior;                                 // Steiner and embedded points
   std::set<vertex_id> corners;                                     // PLC vertices of the facet
+  std::vector<vertex_id> balls;                                    // corners with a protecting ball
   std::vector<std::array<vertex_id, 3>> triangles;                 // ccw in the projection
   // the triangles by cells of a uniform grid over their projected boxes (locate())
   struct triangle_cells {
@@ -580,14 +627,126 @@ class state3 : public state<3> {
         for (std::size_t k = 0; k < 3; ++k)
           E.inside_sign[k] = std::abs(n[k]) >= 0.1 * big ? (side[k] > 0 ? 1 : -1) : 0;
       }    find_acute3();
+    find_balls3();
+    for (auto& S : facets_)
+      for (vertex_id v : S.corners)
+        if (ball(v) > 0) S.balls.push_back(v);
   }
   int S_axis(std::uint32_t f) const { return facets_[f].axis; }
+
+  /// Protecting balls (Cohen-Steiner, de Verdiere and Yvinec, "Conforming Delaunay triangulations
+  /// in 3D"): a vertex where a small angle meets gets a ball of power-of-two radius, at most a third
+  /// of its distance to any feature not through it, half its distance to any volume point and a
+  /// third of its shortest edge. Its edges are split where they leave the ball (presplit_edges),
+  /// no point is inserted inside it (out_of_balls moves one to its sphere), and the pieces inside
+  /// it, a subsegment from the vertex to the sphere or a triangle of the vertex and two points on
+  /// the sphere, lie in balls no point enters: they need no split. Shells about the vertex go on
+  /// outside. Without it, the splits about a vertex where facets and edges meet at small angles
+  /// chase each other towards it, a shell at a time.
+  void find_balls3() {
+    const auto& p = out_.points;
+    const std::size_t n = out_.plc_points;
+    ball_.assign(n, 0);
+    // features near each vertex: PLC edges and facets by the cells of their boxes
+    double total = 0;
+    for (const auto& E : edges_) total += distance(p[E.u], p[E.v]);
+    const double cell = edges_.empty() ? 1.0 : std::max(total / static_cast<double>(edges_.size()), 1e-300);
+    hash_grid<3> features(p[0], cell);
+    auto box_of = [&](const std::vector<vertex_id>& vs, point3& lo, point3& hi) {
+      lo = hi = p[vs[0]];
+      for (vertex_id v : vs)
+        for (std::size_t k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[v][k]), hi[k] = std::max(hi[k], p[v][k]);
+    };
+    for (std::uint32_t e = 0; e < edges_.size(); ++e) {
+      point3 lo, hi;
+      box_of({edges_[e].u, edges_[e].v}, lo, hi);
+      features.insert_box(e, lo, hi);
+    }
+    const auto F = static_cast<std::uint32_t>(edges_.size());
+    for (std::uint32_t f = 0; f < facets_.size(); ++f) {
+      point3 lo, hi;
+      box_of(std::vector<vertex_id>(facets_[f].corners.begin(), facets_[f].corners.end()), lo, hi);
+      features.insert_box(F + f, lo, hi);
+    }
+    for (vertex_id v = 0; v < n; ++v) {
+      if (!acute_[v] || !vertex_edges_.count(v)) continue;
+      double r = 1e300;
+      for (auto e : vertex_edges_.at(v)) r = std::min(r, distance(p[edges_[e].u], p[edges_[e].v]) / 3);
+      // other points (PLC vertices, volume points) within 3r
+      point3 lo, hi;
+      for (std::size_t k = 0; k < 3; ++k) lo[k] = p[v][k] - 3 * r, hi[k] = p[v][k] + 3 * r;
+      grid_.visit(lo, hi, [&](vertex_id y) {
+        if (y == v) return;
+        const double d = distance(p[y], p[v]);
+        r = std::min(r, y < n ? d / 3 : d / 2);
+      });
+      for (std::size_t k = 0; k < 3; ++k) lo[k] = p[v][k] - 3 * r, hi[k] = p[v][k] + 3 * r;
+      features.visit(lo, hi, [&](vertex_id id) {
+        if (id < F) {  // an edge not through v: distance to the segment
+          const auto& E = edges_[id];
+          if (E.u == v || E.v == v) return;
+          const point3 a = p[E.u], d = p[E.v] - a;
+          const double t = std::clamp(dot(p[v] - a, d) / dot(d, d), 0.0, 1.0);
+          r = std::min(r, distance(p[v], a + t * d) / 3);
+        } else {  // a facet not through v: distance to its plane, where v projects into it
+          const auto& S = facets_[id - F];
+          if (S.corners.count(v)) return;
+          const double h = std::abs(dot(p[v] - S.centre, S.unit));
+          if (h >= 3 * r) return;
+          const point3 q = p[v] - dot(p[v] - S.centre, S.unit) * S.unit;
+          int wn = 0;  // winding number of the facet's edges about q, in its projection
+          const point2 pq = geometry::project(q, S.axis);
+          for (auto [e2, fw] : S.sides) {
+            point2 a = geometry::project(p[edges_[e2].u], S.axis), b = geometry::project(p[edges_[e2].v], S.axis);
+            if (!fw) std::swap(a, b);
+            if (a[1] <= pq[1]) {
+              if (b[1] > pq[1] && geometry::orient2d(a, b, pq) > 0) ++wn;
+            } else if (b[1] <= pq[1] && geometry::orient2d(a, b, pq) < 0) {
+              --wn;
+            }
+          }
+          if (wn != 0) r = std::min(r, h / 3);
+        }
+      });
+      if (opt_.size > 0) r = std::min(r, opt_.size / 2);  // the pieces inside are not split for size
+      if (r > 0 && r < 1e300) ball_[v] = rules::snap_to_shell(r * (1 - 1e-8));
+    }
+  }
+
+  /// q, or if it lies inside the protecting ball of a corner of facet f, its radial projection
+  /// onto that ball's sphere.
+  point3 out_of_balls(std::uint32_t f, const point3& q) const {
+    for (vertex_id v : facets_[f].balls) {
+      const point3 d = q - out_.points[v];
+      const double l = std::sqrt(dot(d, d)), r = ball(v);
+      if (l < r && l > 0) return out_.points[v] + (r / l) * d;
+    }
+    return q;
+  }
 
   /// find_acute(), and also vertices where an edge meets a facet through the vertex that does not
   /// contain it at less than 60 degrees.
   void find_acute3() {
     find_acute();
     const auto& p = out_.points;
+    // facets folding onto each other at an edge (a dihedral angle below 60 degrees): its ends
+    for (std::uint32_t e = 0; e < edges_.size(); ++e) {
+      const auto& E = edges_[e];
+      std::vector<point3> into;  // per facet side at the edge: the way into the facet, across it
+      for (auto f : E.facets)
+        for (auto [e2, fw] : facets_[f].sides)
+          if (e2 == e) {
+            const point3& n = facets_[f].unit;
+            const point3 d = fw ? p[E.v] - p[E.u] : p[E.u] - p[E.v];
+            into.push_back((n[static_cast<std::size_t>(facets_[f].axis)] > 0 ? 1.0 : -1.0) * cross(n, d));
+          }
+      for (std::size_t i = 0; i < into.size(); ++i)
+        for (std::size_t j = i + 1; j < into.size(); ++j)
+          if (dot(into[i], into[j]) > 0.5 * std::sqrt(dot(into[i], into[i]) * dot(into[j], into[j]))) {
+            if (E.u < acute_.size()) acute_[E.u] = 1;
+            if (E.v < acute_.size()) acute_[E.v] = 1;
+          }
+    }
     for (std::uint32_t f = 0; f < facets_.size(); ++f)
       for (vertex_id v : facets_[f].corners) {
         if (v >= acute_.size() || acute_[v] || !vertex_edges_.count(v)) continue;
@@ -1135,16 +1294,25 @@ class state3 : public state<3> {
       s.rel = facet_relation(c.f, s.h, sv, se);
       std::array<point3, 2> edge_pts{};
       if (se) edge_pts = {p[(*se)[0]], p[(*se)[1]]};
+      const std::function<bool(const point3&)> in_facet = [&](const point3& q) { return locate(c.f, q, c.t) >= 0; };
       s.q = split_point_of(element_kind::subfacet, s.rel, elem, p[c.y], sv ? &p[*sv] : nullptr, se ? &edge_pts : nullptr, nullptr,
-                           s.fired);
+                           s.fired, &in_facet);
     } else {
       s.q = split_point_of(element_kind::subfacet, relation::on_carrier, elem, elem[0], nullptr, nullptr, nullptr, s.fired);
     }
+    s.q = out_of_balls(c.f, s.q);
     plan_subsegment(c.f, s);
     s.at = s.q;
-    if (locate(c.f, s.at, c.t) < 0) s.at = (1.0 / 3) * (elem[0] + elem[1] + elem[2]);  // outside: centroid
-    if (!S.constant[static_cast<std::size_t>(S.axis)])  // onto the slanted facet's plane: no drift
+    if (locate(c.f, s.at, c.t) < 0) s.at = out_of_balls(c.f, (1.0 / 3) * (elem[0] + elem[1] + elem[2]));  // outside: centroid
+    if (!S.constant[static_cast<std::size_t>(S.axis)]) {
+      // onto the slanted facet's plane (no drift), off the exact construction by a pseudo-random
+      // 1e-10 of the subfacet in the plane (detail::jitter)
+      const auto j = detail::jitter(s.at);
+      const double size = std::sqrt(std::max({squared_distance(elem[0], elem[1]), squared_distance(elem[1], elem[2]),
+                                              squared_distance(elem[2], elem[0])}));
+      s.at = s.at + (1e-10 * size) * (j[0] * S.e1 + j[1] * S.e2);
       s.at = s.at - dot(s.at - S.centre, S.unit) * S.unit;
+    }
     for (std::size_t k = 0; k < 3; ++k)  // exact on axis-aligned facets
       if (S.constant[k]) s.at[k] = S.constant_value[k];
     return s;
@@ -1153,6 +1321,7 @@ class state3 : public state<3> {
   void plan_subsegment(std::uint32_t f, split_plan& s) const {
     s.sub = encroached_subsegment(f, s.q);
     s.fired_sub.reset();
+    if (s.sub && protected_subsegment(s.sub->first, s.sub->second)) s.sub.reset();  // see out_of_balls
     if (!s.sub) return;
     s.m = subsegment_split(s.sub->first, s.sub->second, relation::on_incident_edge, s.q, nullptr, s.fired_sub);
   }
@@ -1212,9 +1381,11 @@ class state3 : public state<3> {
         auto c = todo[k];
         c.flat = true;
         s = plan_split(c);
-        if (occupied(s.sub ? s.m : s.at, scale))
+        if (occupied(s.sub ? s.m : s.at, scale)) {
+          if (y == no_vertex && !flat_pair) continue;  // only too large (a protecting ball's pieces may be)
           throw conform_error(facet_name(f) + ": no new split point for a subfacet near " +
                               std::to_string(S.triangles[t][0] + 1) + " (every candidate is an existing point)");
+        }
       }
       if (trace_on_ && (flat_pair || !s.fired)) ++trace_[flat_pair ? "subfacet/flat-pair/off-centre" : "subfacet/off-centre"];
       count_split(element_kind::subfacet, s.rel, s.fired);

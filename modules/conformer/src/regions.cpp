@@ -52,7 +52,7 @@ double diameter(const std::vector<point<D>>& p) {
 /// on a face plane inside a face.
 template <std::size_t D>
 std::pair<long, int> cast(const boundary<D>& b, const point<D>& o, const point<D>& dir, long skip, bool& degenerate,
-                          bool& on_face) {
+                          bool& on_face, vertex_id skip_vertex = no_vertex) {
   const auto& p = b.points;
   const point<D> far = o + dir;
   long best = -1;
@@ -62,6 +62,7 @@ std::pair<long, int> cast(const boundary<D>& b, const point<D>& o, const point<D
   for (std::size_t f = 0; f < b.faces.size(); ++f) {
     if (static_cast<long>(f) == skip) continue;
     const auto& F = b.faces[f];
+    if (skip_vertex != no_vertex && std::find(F.begin(), F.end(), skip_vertex) != F.end()) continue;
     int so, sf;
     if constexpr (D == 2) {
       so = geometry::orient2d(p[F[0]], p[F[1]], o);
@@ -144,10 +145,10 @@ point<D> face_centre(const boundary<D>& b, std::size_t f) {
 /// Hit side (2*face + s) of a ray from o, trying the fixed directions in turn around `base`.
 template <std::size_t D>
 long first_side(const boundary<D>& b, const point<D>& o, const point<D>& base, long skip, double len,
-                const std::string& what) {
+                const std::string& what, vertex_id skip_vertex = no_vertex) {
   for (std::size_t k = 0; k < tilts.size(); ++k) {
     bool degenerate, on_face;
-    auto [f, s] = cast(b, o, tilt_dir(base, k, len), skip, degenerate, on_face);
+    auto [f, s] = cast(b, o, tilt_dir(base, k, len), skip, degenerate, on_face, skip_vertex);
     if (on_face) throw conform_error(what + " lies on the boundary");
     if (degenerate) continue;
     return f < 0 ? -1 : 2 * f + s;
@@ -294,6 +295,31 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
     const std::size_t root = shells.find(s);
     if (!done[root]) done[root] = 1, probes.push_back(s);
   }
+  // A shell facing away from the region it encloses (the outside of a body) must be linked to
+  // the cell around it. A ray from a face along its normal can meet the same shell again where
+  // it is not convex, which links nothing; a ray from the shell's vertex of largest x, towards
+  // +x, cannot (every point of the shell has a smaller or equal x). Which way a shell faces: the
+  // sign of the volume its sides bound, normals into their regions (divergence theorem).
+  std::vector<double> volume(2 * F, 0);
+  std::vector<vertex_id> extreme(2 * F, no_vertex);
+  for (std::size_t s = 0; s < 2 * F; ++s) {
+    const auto& T = b.faces[s / 2];
+    double v;
+    if constexpr (D == 2)
+      v = pts[T[0]][0] * pts[T[1]][1] - pts[T[1]][0] * pts[T[0]][1];  // > 0 summed: the region is enclosed
+    else
+      v = -dot(pts[T[0]], cross(pts[T[1]], pts[T[2]]));  // the same sign convention
+    const std::size_t root = shells.find(s);
+    volume[root] += s % 2 ? -v : v;
+    for (auto w : T)
+      if (extreme[root] == no_vertex || lex_less(pts[extreme[root]], pts[w])) extreme[root] = w;
+  }
+  const double scale = std::pow(diameter(pts), static_cast<double>(D));
+  std::vector<char> outward(2 * F, 0);
+  for (std::size_t& s : probes) {
+    const std::size_t root = shells.find(s);
+    outward[root] = volume[root] < -1e-12 * scale;
+  }
   // every ray crosses every face: the probes, region points and hole points cast theirs in
   // parallel; the results (or errors) are then used in this order, as if cast one by one
   const std::size_t nr = p.regions.size(), nh = p.holes.size();
@@ -308,11 +334,18 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
   for_each(execution::par(threads), order, [&](std::size_t i) {
     try {
       if (i < probes.size()) {
-        const std::size_t s = probes[i], f = s / 2;
-        point<D> n = face_normal(b, f);
-        if (s % 2) n = -1.0 * n;
-        hits[i] = first_side(b, face_centre(b, f), (1.0 / std::sqrt(dot(n, n))) * n, static_cast<long>(f), len,
-                             p.source + ": probe of face " + std::to_string(f + 1));
+        const std::size_t s = probes[i], f = s / 2, root = shells.find(s);
+        if (outward[root]) {
+          point<D> x{};
+          x[0] = 1;
+          hits[i] = first_side(b, pts[extreme[root]], x, -1, len, p.source + ": probe of vertex " + std::to_string(extreme[root] + 1),
+                               extreme[root]);
+        } else {
+          point<D> n = face_normal(b, f);
+          if (s % 2) n = -1.0 * n;
+          hits[i] = first_side(b, face_centre(b, f), (1.0 / std::sqrt(dot(n, n))) * n, static_cast<long>(f), len,
+                               p.source + ": probe of face " + std::to_string(f + 1));
+        }
       } else if (const std::size_t r = i - probes.size(); r < nr) {
         hits[i] = first_side(b, p.regions[r].at, point<D>{}, -1, len, region_what(r));
       } else {

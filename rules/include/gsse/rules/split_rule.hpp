@@ -29,7 +29,8 @@ enum class relation {
 enum class split_action {
   project,        // orthogonal projection of the encroacher onto the element
   rotate_vertex,  // about the shared vertex; distance snapped to a power of two
-  rotate_edge,    // about the shared edge axis (3D subfacets); distance snapped to a power of two
+  rotate_edge,    // about the shared edge axis (3D subfacets); distance snapped to a power of two;
+                  // only for an encroacher over the element's side of the edge (a fold)
   midpoint,       // subsegment midpoint, subfacet circumcentre
   shell           // subsegments with one end at a PLC vertex where a small angle meets: on the
                   // power-of-two shell about that vertex nearest the midpoint
@@ -68,8 +69,8 @@ std::optional<element_kind> element_kind_from(std::string_view s);
 std::optional<relation> relation_from(std::string_view s);
 std::optional<split_action> split_action_from(std::string_view s);
 
-/// The power-of-two shell a rotated distance is snapped to: the largest 2^k <= d (exact powers
-/// of two are kept), in world units. Shells are nested for every shared vertex, which is what
+/// The power-of-two shell a rotated distance is snapped to: the largest 2^k <= d (1 + 1e-8) (exact
+/// powers of two are kept, and distances rounding left a hair below them), in world units. Shells are nested for every shared vertex, which is what
 /// makes mutual encroachment of small angles terminate.
 double snap_to_shell(double d);
 /// The split of a subsegment of length l with one end at a small-angle vertex: the largest power
@@ -82,7 +83,7 @@ double shell_radius(double l);
 struct shared3 {
   std::optional<point3> vertex;
   std::optional<std::array<point3, 2>> edge;
-  std::optional<point3> shell;  // the subsegment's end at which `shell` splits, if any
+  std::optional<point3> shell;  // the centre of `shell`: the subsegment's end, or on its line behind it
 };
 
 template <std::size_t D>
@@ -116,10 +117,10 @@ std::optional<split_choice<2>> split_point(const split_rule& r, std::span<const 
                                            const point2& encroacher,
                                            const std::optional<point2>& shared_vertex = {},
                                            const std::optional<point2>& shell = {},
-                                           const std::function<bool(const point2&)>& usable = {});
+                                           const std::function<bool(const point2&, split_action)>& usable = {});
 /// element: 2 vertices (subsegment) or 3 (subfacet).
 std::optional<split_choice<3>> split_point(const split_rule& r, std::span<const point3> element,
                                            const point3& encroacher, const shared3& shared = {},
-                                           const std::function<bool(const point3&)>& usable = {});
+                                           const std::function<bool(const point3&, split_action)>& usable = {});
 
 }  // namespace gsse::rules
