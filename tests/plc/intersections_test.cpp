@@ -269,6 +269,13 @@ BOOST_AUTO_TEST_CASE(coplanar_overlap) {
   d.facet(floor_square);
   d.facet({{0, 0, 0}, {2, 0, 0}, {1, 3, 0}});
   expect_one(check(d.p), 0, 1, "they overlap in their plane");
+  // one triangle in another over their shared edge; lifted off the plane by a hair it is legal
+  builder3 f;
+  f.facet({{0, 0, 0}, {2, 0, 0}, {1, 2, 0}});
+  f.facet({{0, 0, 0}, {2, 0, 0}, {1, 1, 0}});
+  expect_one(check(f.p), 0, 1, "vertex 4 lies inside facet 1");
+  f.p.points[3][2] = 1e-300;
+  BOOST_TEST(check(f.p).empty());
   // sharing an edge, on opposite sides: legal
   builder3 e;
   e.facet(floor_square);
@@ -333,6 +340,41 @@ BOOST_AUTO_TEST_CASE(hole_point_between_nested_polygons) {
   BOOST_TEST(check(b.p).empty());
   b.p.facets[1].holes.clear();
   BOOST_TEST(check(b.p).size() == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(many_nested_polygons) {
+  // a disc of 400 corners holding 7 x 7 squares, every other one with a hole point; each square
+  // is also a facet of its own: legal where the hole point removed the square from the disc
+  builder3 b;
+  std::vector<std::vector<point3>> polygons(1);
+  for (int i = 0; i < 400; ++i) {
+    const double t = 2 * std::numbers::pi * i / 400;
+    polygons[0].push_back({10 * std::cos(t), 10 * std::sin(t), 0});
+  }
+  std::vector<point3> holes;
+  std::vector<std::vector<point3>> squares;
+  for (int i = 0; i < 7; ++i)
+    for (int j = 0; j < 7; ++j) {
+      const double x = 2.0 * i - 6.5, y = 2.0 * j - 6.5;
+      squares.push_back({{x, y, 0}, {x + 1, y, 0}, {x + 1, y + 1, 0}, {x, y + 1, 0}});
+      if ((i + j) % 2) holes.push_back({x + 0.5, y + 0.5, 0});
+    }
+  polygons.insert(polygons.end(), squares.begin(), squares.end());
+  b.facet(polygons, holes);
+  BOOST_TEST(check(b.p).empty());
+  for (const auto& q : squares) b.facet(q);
+  auto expect_plugs = [](const std::vector<pc::intersection>& r) {
+    BOOST_TEST_REQUIRE(r.size() == 16u);  // the first 16 of 25 squares without a hole point
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      BOOST_TEST(r[k].a == 0u);
+      BOOST_TEST(r[k].b == 1 + 2 * k);
+    }
+  };
+  expect_plugs(check(b.p));
+  BOOST_TEST(pc::self_intersections(b.p, 100).size() == 25u);
+  // turned, a plug without a hole point may overlap the disc or not (with other diagonals, it and
+  // the disc bound a thin tetrahedron); one with a hole point never
+  for (const auto& x : pc::self_intersections(rotated(b.p), 100)) BOOST_TEST((x.a == 0u && x.b % 2 == 1), x.b);
 }
 
 BOOST_AUTO_TEST_CASE(non_convex_polygons) {
