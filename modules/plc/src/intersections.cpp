@@ -47,9 +47,8 @@ bool apart_in_projection(const std::vector<point3>& p, const element3& T, const 
   auto separates = [&](const element3& E, const std::array<point2, 3>& e, std::size_t i, int side,
                        const element3& F, const std::array<point2, 3>& f) {
     const vertex_id x = E.v[i], y = E.v[(i + 1) % 3];
-    for (std::size_t k = 0; k < 3; ++k)
-      if (F.v[k] == x || F.v[k] == y) continue;
-      else if (has(E, F.v[k]) || orient2d(e[i], e[(i + 1) % 3], f[k]) != side) return false;
+    for (std::size_t k = 0; k < 3; ++k)  // (E's third vertex is on the inner side: never beyond)
+      if (F.v[k] != x && F.v[k] != y && orient2d(e[i], e[(i + 1) % 3], f[k]) != side) return false;
     return true;
   };
   for (std::size_t i = 0; i < 3; ++i)
