@@ -14,6 +14,7 @@
 #include "gsse/io/poly.hpp"
 #include "gsse/io/vtu.hpp"
 #include "gsse/pipeline/pipeline.hpp"
+#include "gsse/plc/region_points.hpp"
 #include "gsse/rules/defaults.hpp"
 
 namespace {
@@ -22,24 +23,30 @@ void usage(std::FILE* to) {
   std::fputs(
       "usage: gsse-mesh INPUT [-o OUTPUT] [--size H] [--cloud POINTS.node] [--threads N] [--verify]\n"
       "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
-      "                 [--rules FILE.rules]\n"
-      "  INPUT    TetGen .poly/.smesh (3D) or Triangle .poly (2D)\n"
+      "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly]\n"
+      "  INPUT    TetGen .poly/.smesh (3D), Triangle .poly (2D), or a closed surface: OFF, STL,\n"
+      "           Gmsh .msh surface mesh (its volumes become segments)\n"
       "  -o       output mesh: .vtu, .msh, or .node (writes .node/.ele/.face beside it)\n"
       "  --size   target element size H (default: none, boundary conforming only)\n"
       "  --cloud  extra interior points (.node); points outside every segment are dropped\n"
-      "  --verify check the mesh (valid, conforming, labelled, Delaunay); non-zero exit if not\n"
+      "  --verify check the mesh against the input (valid, conforming, labelled, Delaunay); if it\n"
+      "           fails: exit status 3, no output written (neither -o nor --stats)\n"
       "  --fill   interior points with --size: a lattice placed before meshing (default), or points\n"
       "           created by the front rules while meshing\n"
       "  --rules  rule set (see docs/rules.md), validated first: its split rules replace the conformer's,\n"
-      "           its front rules the mesher's (front rules imply --fill rules)\n",
+      "           its front rules the mesher's (front rules imply --fill rules)\n"
+      "  --no-merge keep coplanar facets of one marker apart (by default they are merged across\n"
+      "           edges no other facet uses, as TetGen does without -M)\n"
+      "  --plc-out write the input as read (with the region points placed in Gmsh volumes) as a\n"
+      "           TetGen/Triangle .poly and exit without meshing\n",
       to);
 }
 
 struct args {
-  std::string input, output, cloud, stats, rules, fill;
+  std::string input, output, cloud, stats, rules, fill, plc_out;
   double size = 0;
   unsigned threads = 1;
-  bool verify = false, quiet = false;
+  bool verify = false, quiet = false, no_merge = false;
   std::size_t max_steiner = 2'000'000;
 };
 
@@ -53,6 +60,7 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.threads = a.threads;
   o.verify = a.verify;
   o.conform.max_steiner = a.max_steiner;
+  o.conform.merge_coplanar = !a.no_merge;
   gsse::rules::rule_set custom;
   if (!a.rules.empty()) {
     custom = gsse::rules::load_rules(a.rules);
@@ -115,16 +123,17 @@ int run(const gsse::plc<D>& p, const args& a) {
     if (a.verify) std::printf("verify: %s\n", problems.empty() ? "PASS" : "FAIL");
   }
   for (const auto& s : problems) std::fprintf(stderr, "gsse-mesh: verify: %s\n", s.c_str());
-  if (!a.stats.empty()) {
+  if (!a.stats.empty() && problems.empty()) {  // a failed verification writes no file at all
     std::ofstream js(a.stats);
     js << "{\"points\": " << d.points().size() << ", \"segments\": [";
     for (std::size_t k = 0; k < d.segments().size(); ++k)
       js << (k ? ", " : "") << "{\"name\": \"" << d.segments()[k].name() << "\", \"number\": " << d.segments()[k].number()
          << ", \"cells\": " << d.segments()[k].num_cells() << "}";
-    js << "], \"created_points\": " << r.creation.created << ", \"times\": {";
+    js << "], \"steiner\": " << r.steiner << ", \"volume_points\": " << r.volume_points
+       << ", \"created_points\": " << r.creation.created << ", \"times\": {";
     for (std::size_t k = 0; k < r.times.size(); ++k)
       js << (k ? ", " : "") << "\"" << r.times[k].stage << "\": " << r.times[k].seconds;
-    js << "}, \"verified\": " << (a.verify ? (problems.empty() ? "true" : "false") : "null") << "}\n";
+    js << "}, \"verified\": " << (a.verify ? "true" : "null") << "}\n";
   }
   return problems.empty() ? 0 : 3;
 }
@@ -160,10 +169,16 @@ int main(int argc, char** argv) {
           throw std::invalid_argument("--fill must be 'lattice' or 'rules', not '" + a.fill + "'");
       } else if (s == "--rules") {
         a.rules = value();
+      } else if (s == "--plc-out") {
+        a.plc_out = value();
+        if (a.plc_out.size() < 5 || a.plc_out.compare(a.plc_out.size() - 5, 5, ".poly") != 0)
+          throw std::invalid_argument("--plc-out must name a .poly file");
       } else if (s == "--max-steiner") {
         a.max_steiner = std::stoul(value());
       } else if (s == "--verify") {
         a.verify = true;
+      } else if (s == "--no-merge") {
+        a.no_merge = true;
       } else if (s == "--quiet") {
         a.quiet = true;
       } else if (!s.empty() && s[0] == '-') {
@@ -184,7 +199,17 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    return std::visit([&](const auto& p) { return run(p, a); }, gsse::io::read_plc(a.input));
+    std::vector<gsse::io::plc_volume> volumes;
+    auto input = gsse::io::read_plc(a.input, &volumes);
+    if (!volumes.empty()) gsse::plc_tools::add_region_points(std::get<gsse::plc<3>>(input), volumes, a.threads);
+    if (!a.plc_out.empty()) {
+      if (auto* p3 = std::get_if<gsse::plc<3>>(&input))
+        gsse::io::write_tetgen_poly(*p3, a.plc_out);
+      else
+        gsse::io::write_triangle_poly(std::get<gsse::plc<2>>(input), a.plc_out);
+      return 0;
+    }
+    return std::visit([&](const auto& p) { return run(p, a); }, input);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "gsse-mesh: error: %s\n", e.what());
     return 1;

@@ -197,7 +197,7 @@ class parser {
       seen_.insert("try");
       if (l.tok.size() < 2) fail(l.line, "'try': missing action");
       const auto a = split_action_from(l.tok[1]);
-      if (!a) fail(l.line, "unknown action '" + l.tok[1] + "' (expected project, rotate-vertex, rotate-edge or midpoint)");
+      if (!a) fail(l.line, "unknown action '" + l.tok[1] + "' (expected project, rotate-vertex, rotate-edge, midpoint or shell)");
       split_step s{*a, -std::numeric_limits<double>::infinity(), false, l.line};  // no bound unless given
       for (std::size_t i = 2; i < l.tok.size(); ++i) {
         if (l.tok[i] == "inside") s.inside = true;

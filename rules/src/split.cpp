@@ -10,7 +10,7 @@ namespace {
 
 constexpr std::string_view kind_names[] = {"subsegment", "subfacet"};
 constexpr std::string_view relation_names[] = {"free", "on-incident-vertex", "on-incident-edge", "on-carrier"};
-constexpr std::string_view action_names[] = {"project", "rotate-vertex", "rotate-edge", "midpoint"};
+constexpr std::string_view action_names[] = {"project", "rotate-vertex", "rotate-edge", "midpoint", "shell"};
 
 template <class E, std::size_t N>
 std::optional<E> from_names(const std::string_view (&names)[N], std::string_view s) {
@@ -40,9 +40,18 @@ point3 circumcentre(const point3& a, const point3& b, const point3& c) {
 
 template <std::size_t D>
 std::optional<point<D>> segment_candidate(split_action a, const point<D>& p0, const point<D>& p1,
-                                          const point<D>& e, const std::optional<point<D>>& s) {
+                                          const point<D>& e, const std::optional<point<D>>& s,
+                                          const std::optional<point<D>>& shell) {
   const point<D> d = p1 - p0;
   switch (a) {
+    case split_action::shell: {
+      if (!shell) return std::nullopt;
+      const point<D>& far = *shell == p0 ? p1 : p0;
+      const double l = distance(*shell, far);
+      const auto u = normalized<D>(far - *shell);
+      if (!u) return std::nullopt;
+      return *shell + shell_radius(l) * *u;
+    }
     case split_action::project:
       return p0 + (dot(e - p0, d) / dot(d, d)) * d;
     case split_action::midpoint:
@@ -90,6 +99,13 @@ const split_rule* split_rule_set::lookup(element_kind kind, relation rel) const 
   return nullptr;
 }
 
+double shell_radius(double l) {
+  if (!(l > 0) || !std::isfinite(l)) return 0.5 * l;
+  int e = 0;
+  std::frexp(2 * l / 3, &e);  // 2l/3 = m * 2^e, m in [0.5, 1)
+  return std::ldexp(1.0, e - 1);
+}
+
 double snap_to_shell(double d) {
   if (!(d > 0) || !std::isfinite(d)) return d;
   int e = 0;
@@ -126,13 +142,13 @@ bool accepts(const split_step& s, std::span<const point3> el, const point3& p) {
 }
 
 std::optional<point2> split_candidate(split_action a, std::span<const point2, 2> seg, const point2& e,
-                                      const std::optional<point2>& shared_vertex) {
-  return segment_candidate<2>(a, seg[0], seg[1], e, shared_vertex);
+                                      const std::optional<point2>& shared_vertex, const std::optional<point2>& shell) {
+  return segment_candidate<2>(a, seg[0], seg[1], e, shared_vertex, shell);
 }
 
 std::optional<point3> split_candidate(split_action a, std::span<const point3> el, const point3& e,
                                       const shared3& shared) {
-  if (el.size() == 2) return segment_candidate<3>(a, el[0], el[1], e, shared.vertex);
+  if (el.size() == 2) return segment_candidate<3>(a, el[0], el[1], e, shared.vertex, shared.shell);
   if (el.size() != 3) return std::nullopt;
   const point3 &p0 = el[0], &p1 = el[1], &p2 = el[2];
   const point3 centroid = (1.0 / 3) * (p0 + p1 + p2);
@@ -154,6 +170,8 @@ std::optional<point3> split_candidate(split_action a, std::span<const point3> el
       r = s + snap_to_shell(distance(e, s)) * *w;
       break;
     }
+    case split_action::shell:
+      return std::nullopt;  // subsegments only
     case split_action::rotate_edge: {
       if (!shared.edge) return std::nullopt;
       const auto& [q0, q1] = *shared.edge;
@@ -172,20 +190,21 @@ std::optional<point3> split_candidate(split_action a, std::span<const point3> el
 }
 
 std::optional<split_choice<2>> split_point(const split_rule& r, std::span<const point2, 2> seg, const point2& e,
-                                           const std::optional<point2>& shared_vertex) {
+                                           const std::optional<point2>& shared_vertex, const std::optional<point2>& shell,
+                                           const std::function<bool(const point2&)>& usable) {
   for (std::size_t i = 0; i < r.steps.size(); ++i) {
-    const auto c = split_candidate(r.steps[i].action, seg, e, shared_vertex);
-    if (c && is_finite(*c) && accepts(r.steps[i], std::span<const point2>(seg), *c))
+    const auto c = split_candidate(r.steps[i].action, seg, e, shared_vertex, shell);
+    if (c && is_finite(*c) && accepts(r.steps[i], std::span<const point2>(seg), *c) && (!usable || usable(*c)))
       return split_choice<2>{*c, r.steps[i].action, i};
   }
   return std::nullopt;
 }
 
 std::optional<split_choice<3>> split_point(const split_rule& r, std::span<const point3> el, const point3& e,
-                                           const shared3& shared) {
+                                           const shared3& shared, const std::function<bool(const point3&)>& usable) {
   for (std::size_t i = 0; i < r.steps.size(); ++i) {
     const auto c = split_candidate(r.steps[i].action, el, e, shared);
-    if (c && accepts(r.steps[i], el, *c)) return split_choice<3>{*c, r.steps[i].action, i};
+    if (c && accepts(r.steps[i], el, *c) && (!usable || usable(*c))) return split_choice<3>{*c, r.steps[i].action, i};
   }
   return std::nullopt;
 }

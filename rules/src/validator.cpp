@@ -34,6 +34,8 @@ struct checker {
         const std::string act(to_string(st.action));
         if (st.action == split_action::rotate_edge && r.kind != element_kind::subfacet)
           report(st.line, who + ": rotate-edge is only valid for subfacets");
+        if (st.action == split_action::shell && r.kind != element_kind::subsegment)
+          report(st.line, who + ": shell is only valid for subsegments");
         if (st.action == split_action::rotate_vertex && r.rel != relation::on_incident_vertex)
           report(st.line, who + ": rotate-vertex needs relation on-incident-vertex (a shared vertex)");
         if (st.action == split_action::rotate_edge && r.rel != relation::on_incident_edge)

@@ -60,6 +60,21 @@ std::string binary_msh_truncated(std::uint64_t nodes) {
   return s;  // the node header starts at byte 47, the first tag at 99, its coordinates (missing) at 107
 }
 
+// Version 2.2, binary: one node stated, the file ends after its tag (at byte 53).
+std::string binary_msh22_truncated() {
+  std::string s = "$MeshFormat\n2.2 1 8\n";
+  std::int32_t one = 1;
+  s.append(reinterpret_cast<const char*>(&one), 4);
+  s += "\n$EndMeshFormat\n$Nodes\n1\n";
+  s.append(reinterpret_cast<const char*>(&one), 4);
+  return s;
+}
+
+// A surface entity 1 and a volume 1 bounded by it (5 lines), and the closed surface of the
+// tetrahedron of msh_nodes in surface 1 (8 lines).
+const char* entities_vol = "$Entities\n0 0 1 1\n1 0 0 0 1 1 1 0 0\n1 0 0 0 1 1 1 0 1 1\n$EndEntities\n";
+const char* tet_surface = "$Elements\n1 4 1 4\n2 1 2 4\n1 1 3 2\n2 1 2 4\n3 2 3 4\n4 1 4 3\n$EndElements\n";
+
 std::vector<bad_input> table() {
   const std::string M = msh_head;
   return {
@@ -101,7 +116,7 @@ std::vector<bad_input> table() {
       {"fan.ele", "3 4 0\n1 1 2 3 4\n2 1 3 2 5\n3 1 2 3 6\n", ": ", "segment 'region_1' is not a valid mesh",
        "6 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 0 0 -1\n6 1 1 1\n"},
       // ---- Gmsh
-      {"v22.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n", ":2:", "unsupported .msh version '2.2', expected 4.1"},
+      {"v30.msh", "$MeshFormat\n3.0 0 8\n$EndMeshFormat\n", ":2:", "unsupported .msh version '3.0', expected 4.1 or 2.2"},
       {"size.msh", "$MeshFormat\n4.1 0 4\n$EndMeshFormat\n", ":2:", "data size 4 unsupported, expected 8"},
       {"missing.msh", M + msh_nodes + "$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 99\n$EndElements\n", ":19:",
        "element refers to node tag 99, which is not defined"},
@@ -120,6 +135,27 @@ std::vector<bad_input> table() {
        ":14:", "duplicate point: node 4 (in file order) repeats node 2"},
       {"bin.msh", binary_msh_truncated(1), ": byte 107:", "unexpected end of file, expected node x (8 bytes, 0 left)"},
       {"binc.msh", binary_msh_truncated(4), ": byte 55:", "number of nodes 4 exceeds what the remaining 44 bytes can hold"},
+      {"v22b.msh", binary_msh22_truncated(), ": byte 53:", "unexpected end of file, expected node x (8 bytes, 0 left)"},
+      // ---- Gmsh surface meshes read as PLCs (read_plc; names start with surf_)
+      {"surf_open.msh", M + msh_nodes + "$Elements\n1 1 1 1\n2 1 2 1\n1 1 2 3\n$EndElements\n", ":19:",
+       "surface is not closed: edge (nodes 1, 2) belongs to 1 face"},
+      {"surf_vol_open.msh", M + entities_vol + msh_nodes + "$Elements\n1 3 1 3\n2 1 2 3\n1 1 3 2\n2 1 2 4\n3 2 3 4\n$EndElements\n",
+       ":24:", "volume 1 is not closed: edge (nodes 1, 3) lies in 1 of its boundary faces"},
+      {"surf_order2.msh", M + msh_nodes + "$Elements\n1 1 1 1\n2 1 9 1\n1 1 2 3 4 1 2\n$EndElements\n", ":18:",
+       "second-order triangles (type 9) cannot be surface facets"},
+      {"surf_unknown.msh", M + msh_nodes + "$Elements\n1 1 1 1\n2 1 77 1\n1 1 2 3\n$EndElements\n", ":18:",
+       "unsupported element type 77"},
+      {"surf_tets.msh", M + msh_nodes + "$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n", ":18:",
+       "tetrahedra (type 4): a volume mesh, not a surface mesh"},
+      {"surf_nosurf.msh", M + "$Entities\n0 0 0 1\n1 0 0 0 1 1 1 0 1 5\n$EndEntities\n" + msh_nodes + tet_surface, ":6:",
+       "volume 1 is bounded by surface 5, which has no triangles or quadrangles"},
+      {"surf_phys.msh",
+       M + "$Entities\n0 0 1 2\n1 0 0 0 1 1 1 0 0\n1 0 0 0 1 1 1 0 1 1\n2 0 0 0 1 1 1 1 1 1 1\n$EndEntities\n" + msh_nodes + tet_surface,
+       ":7:", "volume 1 has no physical group, and its tag 1 is the physical group of volume 2"},
+      {"surf_dup.msh", M + "$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n1 0 0\n$EndNodes\n" + tet_surface, ":14:",
+       "duplicate point: node 4 repeats node 2"},
+      {"surf_v22_open.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$EndNodes\n"
+                            "$Elements\n1\n1 2 2 0 1 1 2 3\n$EndElements\n", ":12:", "surface is not closed: edge (nodes 1, 2)"},
       // ---- sidecar
       {"side.json", "{\"segments\": [\"a\", \"b\"], \"numbers\": [1]}", ":1:", "\"numbers\" has 1 entries, \"segments\" has 2"},
   };
@@ -127,7 +163,8 @@ std::vector<bad_input> table() {
 
 void read_any(const std::string& path) {
   const auto ext = std::filesystem::path(path).extension().string();
-  if (ext == ".msh") (void)io::read_msh_any(path);
+  if (ext == ".msh" && std::filesystem::path(path).filename().string().rfind("surf_", 0) == 0) (void)io::read_plc(path);
+  else if (ext == ".msh") (void)io::read_msh_any(path);
   else if (ext == ".ele") (void)io::read_tetgen_mesh(path);
   else if (ext == ".node") (void)io::read_node<3>(path);
   else if (ext == ".json") (void)io::read_sidecar(path);

@@ -155,6 +155,22 @@ BOOST_AUTO_TEST_CASE(msh_skips_lower_dimensional_elements_and_unknown_sections) 
   BOOST_TEST(d.segments()[0].num_cells() == 1u);
 }
 
+BOOST_AUTO_TEST_CASE(msh_version_2_2_volume_mesh) {
+  test::scratch_dir dir("rt_msh22");
+  // element 3 repeats element 2 for a second physical group (as Gmsh writes 2.2): read once,
+  // in the first group; the triangle is lower-dimensional and skipped
+  const auto p = dir.write("t22.msh",
+                           "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n3 5 \"body\"\n3 9 \"other\"\n"
+                           "$EndPhysicalNames\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n7 0 0 1\n$EndNodes\n"
+                           "$Elements\n3\n1 2 2 7 3 1 2 3\n2 4 2 5 1 1 2 3 7\n3 4 2 9 1 1 2 3 7\n$EndElements\n");
+  auto d = io::read_msh<3>(p);
+  BOOST_TEST_REQUIRE(d.segments().size() == 1u);
+  BOOST_TEST(d.segments()[0].name() == "body");
+  BOOST_TEST(d.segments()[0].number() == 5);
+  BOOST_TEST(d.segments()[0].num_cells() == 1u);
+  BOOST_TEST(d.points()[3][2] == 1.0);
+}
+
 BOOST_AUTO_TEST_CASE(vtu_structure) {
   test::scratch_dir dir("rt_vtu");
   auto d = finalized(sample<3>());

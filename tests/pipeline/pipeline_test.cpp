@@ -9,6 +9,7 @@
 #include "gsse/io/poly.hpp"
 #include "gsse/pipeline/pipeline.hpp"
 #include "gsse/topology/incidence.hpp"
+#include "gsse/verify/verify.hpp"
 
 using namespace gsse;
 namespace pl = gsse::pipeline;
@@ -17,8 +18,8 @@ namespace {
 
 std::string example(const char* name) { return std::string(GSSE_SOURCE_DIR) + "/examples/" + name + ".poly"; }
 
-/// Runs the stages one by one (as a research code composing them would) and verifies with the
-/// conformed boundary and labels: valid, conforming, labelled, Delaunay.
+/// Runs the stages one by one (as a research code composing them would) and verifies the mesh
+/// against the input PLC: valid, conforming, labelled, Delaunay.
 template <std::size_t D>
 domain<D> mesh_and_verify(const plc<D>& p, double h, unsigned threads, std::vector<point<D>> cloud = {}) {
   conformer::options co;
@@ -29,7 +30,7 @@ domain<D> mesh_and_verify(const plc<D>& p, double h, unsigned threads, std::vect
   BOOST_TEST(conformer::encroached(b).empty());
   const auto l = conformer::label(b, p);
   auto d = pl::mesh_segments<D>{}(b, l, threads);
-  const auto problems = pl::verify(d, &b, &l);
+  const auto problems = gsse::verify::check(d, p).problems;
   BOOST_TEST(problems.empty(), p.source << ": " << (problems.empty() ? "" : problems.front()));
   BOOST_TEST(d.segments().size() == p.regions.size());
   return d;
@@ -103,7 +104,7 @@ BOOST_AUTO_TEST_CASE(a_research_code_replaces_one_stage) {
   const auto b = pl::conform<3>{}(p, mine, co);
   const auto l = conformer::label(b, p);
   const auto d = pl::mesh_segments<3>{}(b, l, 1);
-  BOOST_TEST(pl::verify(d, &b, &l).empty());
+  BOOST_TEST(gsse::verify::check(d, p).ok());
   BOOST_TEST(d.points().size() >= p.points.size() + mine.size());  // every point of mine is a vertex
 }
 
@@ -123,16 +124,16 @@ BOOST_AUTO_TEST_CASE(verifier_detects_a_broken_mesh) {
   const auto b = pl::conform<2>{}(p, {}, co);
   const auto l = conformer::label(b, p);
   auto d = pl::mesh_segments<2>{}(b, l, 1);
-  BOOST_TEST_REQUIRE(pl::verify(d, &b, &l).empty());
+  BOOST_TEST_REQUIRE(gsse::verify::check(d, p).ok());
   // flip one cell: inverted
   auto broken = d;
   auto& cells = broken.segments()[0].mutable_cells();
   std::swap(cells[0][0], cells[0][1]);
-  BOOST_TEST(!pl::verify(broken, &b, &l).empty());
-  // drop one cell: the segment no longer covers its boundary
+  BOOST_TEST(gsse::verify::check(broken, p).inverted_cells == 1u);
+  // drop one cell: its neighbours' faces become hull faces inside the domain
   auto holed = d;
   holed.segments()[0].mutable_cells().pop_back();
-  BOOST_TEST(!pl::verify(holed, &b, &l).empty());
+  BOOST_TEST(gsse::verify::check(holed, p).off_facet_faces > 0u);
   const auto q = pl::measure(d);
   std::size_t ncells = 0;
   for (const auto& s : d.segments()) ncells += s.num_cells();
@@ -155,7 +156,7 @@ BOOST_AUTO_TEST_CASE(closed_surface_becomes_one_named_segment) {
   const auto b = pl::conform<3>{}(p, volume, co);
   const auto l = conformer::label(b, p);
   const auto d = pl::mesh_segments<3>{}(b, l, 1);
-  BOOST_TEST(pl::verify(d, &b, &l).empty());
+  BOOST_TEST(gsse::verify::check(d, p).ok());
   BOOST_TEST_REQUIRE(d.segments().size() == 1u);
   BOOST_TEST(d.segments()[0].name() == "unit_cube");
   BOOST_TEST(d.segments()[0].number() == 1);

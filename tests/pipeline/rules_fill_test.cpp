@@ -58,7 +58,7 @@ BOOST_AUTO_TEST_CASE(rules_fill_the_mosfet_3d_with_a_valid_delaunay_mesh) {
   const auto p = io::read_tetgen_poly(example("mosfet"));
   const double h = 0.1;
   pl::report r;
-  const auto d = mesh(p, h, r);  // verify(): valid, conforming, labelled, Delaunay
+  const auto d = mesh(p, h, r);  // verified against the PLC: valid, conforming, labelled, Delaunay
   BOOST_TEST(r.volume_points == 0u);  // no lattice: every interior point comes from a rule
   BOOST_TEST(r.creation.created > 0u);
   const auto in = interior_points(d, p, h);

@@ -114,7 +114,7 @@ const malformed cases[] = {
     {"dimension 2\nsplit a\n relation near\n", 3,
      "unknown relation 'near' (expected free, on-incident-vertex, on-incident-edge or on-carrier)"},
     {"dimension 2\nsplit a\n try bisect\n", 3,
-     "unknown action 'bisect' (expected project, rotate-vertex, rotate-edge or midpoint)"},
+     "unknown action 'bisect' (expected project, rotate-vertex, rotate-edge, midpoint or shell)"},
     {"dimension 2\nsplit a\n try project far\n", 3, "unknown condition 'far' (expected min-gap or inside)"},
     {"dimension 2\nsplit a\n try project min-gap\n", 3, "'try': missing value"},
     {"dimension 2\nsplit a\n try project min-gap 0.1x\n", 3, "expected a number, got '0.1x'"},

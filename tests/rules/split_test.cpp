@@ -47,7 +47,7 @@ BOOST_AUTO_TEST_CASE(free_vertex_is_projected) {
   BOOST_REQUIRE(c);
   BOOST_TEST(near(c->at, point2{0.3, 0}));
   BOOST_TEST((c->action == split_action::project));
-  BOOST_TEST(c->step == 0u);
+  BOOST_TEST(c->step == 1u);  // step 0, `shell`, has no centre here
 }
 
 BOOST_AUTO_TEST_CASE(projection_too_close_to_an_end_falls_back_to_midpoint) {
@@ -56,8 +56,39 @@ BOOST_AUTO_TEST_CASE(projection_too_close_to_an_end_falls_back_to_midpoint) {
     BOOST_REQUIRE(c);
     BOOST_TEST(near(c->at, point2{0.5, 0}));
     BOOST_TEST((c->action == split_action::midpoint));
-    BOOST_TEST(c->step == 1u);
+    BOOST_TEST(c->step == 2u);
   }
+}
+
+BOOST_AUTO_TEST_CASE(shell_radius_is_a_power_of_two_in_the_middle_third) {
+  for (double l : {1.0, 0.75, 0.7, 3.0, 1e-3, 0.123456789, 5.5e7}) {
+    const double r = shell_radius(l);
+    int e = 0;
+    BOOST_TEST(std::frexp(r, &e) == 0.5);  // a power of two
+    BOOST_TEST(r >= l / 3);
+    BOOST_TEST(r <= 2 * l / 3);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(shell_splits_about_the_small_angle_end) {
+  // whatever the encroacher, a subsegment with a shell centre at one end is split on the shell
+  // about it nearest the midpoint (the first step of every default subsegment rule)
+  const std::array<point2, 2> s{{{0, 0}, {0.7, 0}}};
+  for (auto rel : {relation::free, relation::on_incident_vertex, relation::on_carrier}) {
+    const auto from_start = split_point(rule2(rel), s, {0.3, 0.1}, point2{0, 0}, point2{0, 0});
+    BOOST_REQUIRE(from_start);
+    BOOST_TEST((from_start->action == split_action::shell));
+    BOOST_TEST(near(from_start->at, point2{0.25, 0}));
+    const auto from_end = split_point(rule2(rel), s, {0.3, 0.1}, point2{0.7, 0}, point2{0.7, 0});
+    BOOST_REQUIRE(from_end);
+    BOOST_TEST(near(from_end->at, point2{0.45, 0}));  // 0.7 - 0.25
+  }
+}
+
+BOOST_AUTO_TEST_CASE(a_rejected_candidate_falls_through_to_the_next_step) {
+  const auto c = split_point(rule2(relation::free), seg, {0.3, 0.2}, {}, {}, [](const point2& q) { return q[0] != 0.3; });
+  BOOST_REQUIRE(c);
+  BOOST_TEST((c->action == split_action::midpoint));
 }
 
 BOOST_AUTO_TEST_CASE(incident_vertex_is_rotated_onto_a_shell) {
@@ -120,7 +151,7 @@ BOOST_AUTO_TEST_CASE(subsegment_3d) {
   BOOST_TEST(near(c->at, point3{0.6, 0, 0}));
   const std::array<point3, 2> up{{{0, 0, 0}, {0, 0, 1}}};
   c = split_point(rule3(element_kind::subsegment, relation::on_incident_vertex), up, {0.3, 0, 0},
-                  shared3{point3{0, 0, 0}, {}});
+                  shared3{point3{0, 0, 0}, {}, {}});
   BOOST_TEST(near(c->at, point3{0, 0, 0.25}));
   BOOST_TEST((c->action == split_action::rotate_vertex));
   c = split_point(rule3(element_kind::subsegment, relation::on_carrier), s, {0.2, 0, 0});
@@ -157,7 +188,7 @@ BOOST_AUTO_TEST_CASE(subfacet_projection_outside_the_subfacet) {
 BOOST_AUTO_TEST_CASE(subfacet_rotated_about_the_shared_vertex) {
   const point3 e{0.3, 0.3, 0.2};  // |e| = sqrt(0.22) = 0.469 -> shell 0.25
   const auto c = split_point(rule3(element_kind::subfacet, relation::on_incident_vertex), tri, e,
-                             shared3{point3{0, 0, 0}, {}});
+                             shared3{point3{0, 0, 0}, {}, {}});
   BOOST_REQUIRE(c);
   const double x = 0.25 / std::sqrt(2.0);
   BOOST_TEST(near(c->at, point3{x, x, 0}));
@@ -169,13 +200,13 @@ BOOST_AUTO_TEST_CASE(subfacet_rotated_about_the_shared_edge) {
   const std::array<point3, 3> t{{{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}}};
   const double a = 10 * std::numbers::pi / 180;
   const point3 e{0.4, 0.3 * std::cos(a), 0.3 * std::sin(a)};  // 0.3 from the axis -> shell 0.25
-  const shared3 sh{{}, std::array<point3, 2>{point3{0, 0, 0}, point3{1, 0, 0}}};
+  const shared3 sh{{}, std::array<point3, 2>{point3{0, 0, 0}, point3{1, 0, 0}}, {}};
   const auto c = split_point(rule3(element_kind::subfacet, relation::on_incident_edge), t, e, sh);
   BOOST_REQUIRE(c);
   BOOST_TEST(near(c->at, point3{0.4, 0.25, 0}));
   BOOST_TEST((c->action == split_action::rotate_edge));
   // the same encroacher with the edge given in the other direction
-  const shared3 rev{{}, std::array<point3, 2>{point3{1, 0, 0}, point3{0, 0, 0}}};
+  const shared3 rev{{}, std::array<point3, 2>{point3{1, 0, 0}, point3{0, 0, 0}}, {}};
   BOOST_TEST(near(split_point(rule3(element_kind::subfacet, relation::on_incident_edge), t, e, rev)->at,
                   point3{0.4, 0.25, 0}));
 }
@@ -191,5 +222,5 @@ BOOST_AUTO_TEST_CASE(actions_that_cannot_be_computed) {
   BOOST_TEST(!split_candidate(split_action::rotate_vertex, std::span<const point3>(tri), {0, 0, 1}, shared3{}));
   const std::array<point3, 2> s{{{0, 0, 0}, {1, 0, 0}}};
   BOOST_TEST(!split_candidate(split_action::rotate_edge, std::span<const point3>(s), {0, 1, 0},
-                              shared3{{}, std::array<point3, 2>{point3{0, 0, 0}, point3{1, 0, 0}}}));
+                              shared3{{}, std::array<point3, 2>{point3{0, 0, 0}, point3{1, 0, 0}}, {}}));
 }

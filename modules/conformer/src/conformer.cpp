@@ -12,7 +12,10 @@
 #include "encroachment.hpp"
 #include "gsse/front/front_mesher.hpp"
 #include "gsse/geometry/hash_grid.hpp"
+#include "gsse/plc/facet_regions.hpp"
+#include "gsse/conformer/regions.hpp"
 #include "gsse/front/gift_wrap.hpp"
+#include "gsse/front/kernels.hpp"
 #include "gsse/rules/defaults.hpp"
 #include "gsse/rules/split_rule.hpp"
 #include "gsse/traversal/for_each.hpp"
@@ -23,14 +26,17 @@ namespace {
 using rules::element_kind;
 using rules::relation;
 
+/// Grid cells for `count` points (pts.size() if 0) in the box of pts: about one point per cell if
+/// they filled the box, never above `size` when given.
 template <std::size_t D>
-double cell_size_for(const std::vector<point<D>>& pts, double size) {
+double cell_size_for(const std::vector<point<D>>& pts, double size, std::size_t count = 0) {
   point<D> lo = pts[0], hi = pts[0];
   for (const auto& q : pts)
     for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
   double ext = 0;
   for (std::size_t k = 0; k < D; ++k) ext = std::max(ext, hi[k] - lo[k]);
-  double h = ext / std::max(1.0, std::pow(static_cast<double>(pts.size()), 1.0 / static_cast<double>(D)));
+  if (count == 0) count = pts.size();
+  double h = ext / std::max(1.0, std::pow(static_cast<double>(count), 1.0 / static_cast<double>(D)));
   if (size > 0) h = std::min(h, size);
   return h > 0 ? h : 1.0;
 }
@@ -40,6 +46,11 @@ struct plc_edge {
   vertex_id u, v;
   std::vector<vertex_id> chain;
   std::vector<std::uint32_t> facets;  // 3D: facets containing the edge
+  // 3D: the direction into one of its facets, in that facet's plane, and the sign of
+  // orient2d(u, v, x) that "x inside that facet" has in each coordinate projection (0: the
+  // projection is not checked, the facet is nearly parallel to its axis). See on_edge().
+  point3 inward{};
+  std::array<int, 3> inside_sign{};
 };
 
 /// Points inserted since some moment: an element checked clean before can be encroached only by
@@ -80,7 +91,7 @@ template <std::size_t D>
 class state {
  public:
   state(const plc<D>& p, const std::vector<point<D>>& volume, const options& o)
-      : plc_(p), opt_(o), grid_h_(p.points.empty() ? 1.0 : cell_size_for(p.points, o.size)),
+      : plc_(p), opt_(o), grid_h_(p.points.empty() ? 1.0 : cell_size_for(p.points, o.size, p.points.size() + volume.size())),
         grid_(p.points.empty() ? point<D>{} : p.points[0], grid_h_) {
     if (p.points.empty()) throw conform_error(p.source + ": the PLC has no points");
     out_.points = p.points;
@@ -92,7 +103,13 @@ class state {
       out_.homes.push_back({home::free, 0});
     }
     out_.volume_points = volume.size();
-    for (vertex_id v = 0; v < out_.points.size(); ++v) grid_.insert(v, out_.points[v]);
+    grid_sized_for_ = out_.points.size();
+    box_lo_ = box_hi_ = out_.points[0];
+    for (vertex_id v = 0; v < out_.points.size(); ++v) {
+      grid_.insert(v, out_.points[v]);
+      for (std::size_t k = 0; k < D; ++k)
+        box_lo_[k] = std::min(box_lo_[k], out_.points[v][k]), box_hi_[k] = std::max(box_hi_[k], out_.points[v][k]);
+    }
     rules_ = o.rules ? o.rules : &own_rules_;
     if (!o.rules) own_rules_ = rules::default_rules(D == 2 ? "conformer2d" : "conformer3d");
   }
@@ -109,7 +126,17 @@ class state {
     out_.points.push_back(q);
     out_.homes.push_back(h);
     const auto v = static_cast<vertex_id>(out_.points.size() - 1);
-    grid_.insert(v, q);
+    if (out_.points.size() > 4 * grid_sized_for_) {
+      // boundary refinement far beyond the points the grid was made for (a fine surface in a
+      // coarse box): cells as for today's count, else each lookup scans crowded cells
+      grid_sized_for_ = out_.points.size();
+      grid_h_ = std::min(grid_h_, cell_size_for(out_.points, opt_.size, grid_sized_for_));
+      grid_ = hash_grid<D>(out_.points[0], grid_h_);
+      for (vertex_id w = 0; w < out_.points.size(); ++w) grid_.insert(w, out_.points[w]);
+    } else {
+      grid_.insert(v, q);
+    }
+    for (std::size_t k = 0; k < D; ++k) box_lo_[k] = std::min(box_lo_[k], q[k]), box_hi_[k] = std::max(box_hi_[k], q[k]);
     ++out_.steiner;
     return v;
   }
@@ -127,6 +154,34 @@ class state {
     return it->second;
   }
 
+  /// True if a point lies within 1e-8 * scale of q (scale: the size of the element q splits). A
+  /// split point there would be the same point (an encroacher rotated onto its image of an
+  /// earlier split, an ulp away): it would not end the encroachment, and the next round would
+  /// make it again. The split point is a construction, so this bound decides no topology.
+  bool occupied(const point<D>& q, double scale) const {
+    const double r = 1e-8 * scale;
+    point<D> lo, hi;
+    for (std::size_t k = 0; k < D; ++k) lo[k] = q[k] - r, hi[k] = q[k] + r;
+    return !grid_.visit(lo, hi, [&](vertex_id y) { return squared_distance(out_.points[y], q) > r * r; });
+  }
+
+  /// Marks the PLC vertices where two PLC edges meet at less than 60 degrees: their edges are
+  /// split on concentric shells (the `shell` rule action).
+  void find_acute() {
+    const auto& p = out_.points;
+    acute_.assign(out_.plc_points, 0);
+    for (const auto& [v, es] : vertex_edges_) {
+      std::vector<point<D>> dirs;
+      for (auto e : es) {
+        const point<D> d = p[edges_[e].u == v ? edges_[e].v : edges_[e].u] - p[v];
+        dirs.push_back((1.0 / std::sqrt(dot(d, d))) * d);
+      }
+      for (std::size_t i = 0; i < dirs.size() && !acute_[v]; ++i)
+        for (std::size_t j = i + 1; j < dirs.size(); ++j)
+          if (dot(dirs[i], dirs[j]) > 0.5) acute_[v] = 1;
+    }
+  }
+
   /// Uniform pre-split of every PLC edge longer than the target size.
   void presplit_edges() {
     if (opt_.size <= 0) return;
@@ -138,7 +193,7 @@ class state {
       std::vector<vertex_id> inner;
       for (int i = 1; i < n; ++i) {
         const double t = static_cast<double>(i) / n;
-        inner.push_back(add_point(snap_to_edge(a + t * (b - a), a, b), {home::edge, e}));
+        inner.push_back(add_point(on_edge(a + t * (b - a), e), {home::edge, e}));
       }
       if (out_.points[edges_[e].u] != a) std::reverse(inner.begin(), inner.end());
       std::vector<vertex_id> chain{edges_[e].u};
@@ -148,23 +203,29 @@ class state {
     }
   }
 
-  /// Vertices on the diametral sphere of (a,b) or strictly inside: returns the encroacher with the
-  /// smallest id (deterministic), or no_vertex.
+  /// The box of the ball (c, r) within the bounding box of all points (no cell outside holds one).
+  void ball_box(const point<D>& c, double r, point<D>& lo, point<D>& hi) const {
+    for (std::size_t k = 0; k < D; ++k) lo[k] = std::max(c[k] - r, box_lo_[k]), hi[k] = std::min(c[k] + r, box_hi_[k]);
+  }
+
+  /// Vertices on the diametral sphere of (a,b) or strictly inside: returns an encroacher, the one
+  /// of smallest id in the nearest ring of grid cells about the ball's centre that holds one
+  /// (deterministic; a large ball is not scanned whole), or no_vertex.
   vertex_id segment_encroacher(vertex_id a, vertex_id b, std::vector<vertex_id>& ties) const {
     const auto& p = out_.points;
     const auto [c, r] = detail::diametral_bound(p[a], p[b]);
     point<D> lo, hi;
-    for (std::size_t k = 0; k < D; ++k) lo[k] = c[k] - r, hi[k] = c[k] + r;
+    ball_box(c, r, lo, hi);
     vertex_id strict = no_vertex;
     ties.clear();
     const double r2 = r * r;
-    grid_.visit(lo, hi, [&](vertex_id y) {
+    grid_.visit_rings(c, lo, hi, [&](vertex_id y) {
       if (y == a || y == b || (strict != no_vertex && y > strict)) return;
       if (squared_distance(c, p[y]) > r2) return;  // double prefilter, padded
       const int s = geometry::in_diametral(p[a], p[b], p[y]);
       if (s > 0) strict = y;
       else if (s == 0) ties.push_back(y);
-    });
+    }, [&] { return strict != no_vertex; });
     if (strict != no_vertex) return strict;
     if (ties.empty()) return no_vertex;
     std::sort(ties.begin(), ties.end());
@@ -220,32 +281,60 @@ class state {
           std::find(E.facets.begin(), E.facets.end(), h.id) != E.facets.end())
         rel = relation::on_incident_edge;
     }
-    const point<D> q = snap_to_edge(
-        split_at(element_kind::subsegment, rel, {p[a], p[b]}, p[y], shared ? &p[*shared] : nullptr), p[a], p[b]);
+    std::optional<rules::split_action> fired;
+    const point<D> q = subsegment_split(e, i, rel, p[y], shared ? &p[*shared] : nullptr, fired);
+    if constexpr (D == 3) count_split(element_kind::subsegment, rel, fired);
     const vertex_id m = add_point(q, {home::edge, e});
     E.chain.insert(E.chain.begin() + static_cast<long>(i) + 1, m);
   }
 
-  point<D> split_at(element_kind kind, relation rel, const std::vector<point<D>>& elem, const point<D>& enc,
-                    const point<D>* shared, const std::array<point3, 2>* shared_edge = nullptr) {
-    std::optional<rules::split_action> fired;
-    const point<D> q = split_point_of(kind, rel, elem, enc, shared, shared_edge, fired);
-    if constexpr (D == 3) count_split(kind, rel, fired);
-    return q;
+  /// The split point of subsegment chain[i], chain[i+1] of edge e for an encroacher at `enc`:
+  /// the rule's point, on the edge (on_edge). A subsegment with exactly one end at a small-angle
+  /// PLC vertex gets that vertex as the centre of the `shell` action. The point must lie strictly
+  /// inside the subsegment and differ from its ends; when rounding leaves no such point the
+  /// subsegment is too short to split in double precision, which is an error, not a loop.
+  point<D> subsegment_split(std::uint32_t e, std::size_t i, relation rel, const point<D>& enc, const point<D>* shared,
+                            std::optional<rules::split_action>& fired) const {
+    const auto& E = edges_[e];
+    const auto& p = out_.points;
+    const vertex_id a = E.chain[i], b = E.chain[i + 1];
+    const bool at_u = a == E.u && acute_[E.u], at_v = b == E.v && acute_[E.v];
+    const point<D>* shell = at_u != at_v ? &p[at_u ? E.u : E.v] : nullptr;
+    const point<D> q = on_edge(split_point_of(element_kind::subsegment, rel, {p[a], p[b]}, enc, shared, nullptr, shell, fired), e);
+    auto strictly_inside = [&](const point<D>& x) {
+      return x != p[a] && x != p[b] && dot(x - p[a], p[b] - p[a]) > 0 && dot(x - p[b], p[a] - p[b]) > 0;
+    };
+    const double l = distance(p[a], p[b]);
+    if (strictly_inside(q) && !occupied(q, l)) return q;
+    const point<D> m = on_edge(0.5 * (p[a] + p[b]), e);
+    fired = rules::split_action::midpoint;
+    if (strictly_inside(m) && !occupied(m, l)) return m;
+    throw conform_error(plc_.source + ": the boundary segment between vertices " + std::to_string(a + 1) + " and " +
+                        std::to_string(b + 1) + " (on the input edge " + std::to_string(E.u + 1) + "-" +
+                        std::to_string(E.v + 1) + ", length " + std::to_string(distance(p[a], p[b])) +
+                        ") is too short to split in double precision: the input has features (or a small angle "
+                        "near that edge) too fine for its coordinates");
   }
   /// split_at without the trace count (const: subfacet splits are planned in parallel); `fired`
   /// receives the action of the rule step that gave the point.
   point<D> split_point_of(element_kind kind, relation rel, const std::vector<point<D>>& elem, const point<D>& enc,
-                          const point<D>* shared, const std::array<point3, 2>* shared_edge,
+                          const point<D>* shared, const std::array<point3, 2>* shared_edge, const point<D>* shell,
                           std::optional<rules::split_action>& fired) const {
     const rules::split_rule* r = rules_->split.lookup(kind, rel);
     if (!r) throw conform_error("conformer rules have no rule for " + std::string(rules::to_string(kind)) + "/" +
                                 std::string(rules::to_string(rel)));
+    // a candidate on an existing point is no split (occupied()): the rule's next action is tried
+    double scale = 1e300;
+    for (std::size_t i = 0; i < elem.size(); ++i)
+      for (std::size_t j = i + 1; j < elem.size(); ++j) scale = std::min(scale, distance(elem[i], elem[j]));
+    auto usable = [&](const point<D>& q) { return !occupied(q, scale); };
     if constexpr (D == 2) {
       std::optional<point2> sv;
       if (shared) sv = *shared;
       const std::array<point2, 2> s{elem[0], elem[1]};
-      if (auto c = rules::split_point(*r, std::span<const point2, 2>(s), enc, sv)) {
+      std::optional<point2> sc;
+      if (shell) sc = *shell;
+      if (auto c = rules::split_point(*r, std::span<const point2, 2>(s), enc, sv, sc, usable)) {
         fired = c->action;
         return c->action == rules::split_action::project ? exact_projection(c->at, elem, enc) : c->at;
       }
@@ -253,7 +342,8 @@ class state {
       rules::shared3 sh;
       if (shared) sh.vertex = *shared;
       if (shared_edge) sh.edge = *shared_edge;
-      if (auto c = rules::split_point(*r, std::span<const point3>(elem), enc, sh)) {
+      if (shell) sh.shell = *shell;
+      if (auto c = rules::split_point(*r, std::span<const point3>(elem), enc, sh, usable)) {
         fired = c->action;
         return c->action == rules::split_action::project ? exact_projection(c->at, elem, enc) : c->at;
       }
@@ -291,6 +381,35 @@ class state {
   static point<D> snap_to_edge(point<D> q, const point<D>& a, const point<D>& b) {
     for (std::size_t k = 0; k < D; ++k)
       if (a[k] == b[k]) q[k] = a[k];
+    return q;
+  }
+
+  /// A split point of PLC edge e. Coordinates constant along the edge are copied exactly. In 3D a
+  /// point of a slanted edge is on its line only up to rounding; it is moved by a few ulps, if
+  /// need be, so that it lies in the closed region of one of the edge's facets in every
+  /// coordinate projection (exact orientations against the edge's end vertices): a point
+  /// rounded to the outside of every facet through the edge would belong to none of them.
+  point<D> on_edge(point<D> q, std::uint32_t e) const {
+    const auto& E = edges_[e];
+    const point<D>&a = out_.points[E.u], &b = out_.points[E.v];
+    q = snap_to_edge(q, a, b);
+    if constexpr (D == 3) {
+      auto inside = [&](const point3& x) {
+        for (int k = 0; k < 3; ++k) {
+          const int want = E.inside_sign[static_cast<std::size_t>(k)];
+          if (want == 0) continue;
+          const int o = geometry::orient_projected(a, b, x, k);
+          if (o != 0 && o != want) return false;
+        }
+        return true;
+      };
+      if (inside(q) || dot(E.inward, E.inward) == 0) return q;
+      double step = detail::magnitude(q) * detail::eps;
+      for (int i = 0; i < 64; ++i, step *= 2) {
+        point3 x = snap_to_edge(q + step * E.inward, a, b);
+        if (inside(x)) return x;
+      }
+    }
     return q;
   }
 
@@ -379,12 +498,15 @@ class state {
   boundary<D> out_;
   double grid_h_;
   hash_grid<D> grid_;
+  std::size_t grid_sized_for_ = 0;  // points the cell size was chosen for
+  point<D> box_lo_{}, box_hi_{};  // bounding box of all points
   rules::rule_set own_rules_;
   const rules::rule_set* rules_;
   std::vector<plc_edge> edges_;
   std::map<std::pair<vertex_id, vertex_id>, std::uint32_t> edge_index_;
   std::map<vertex_id, std::vector<std::uint32_t>> vertex_edges_;
   std::size_t segments_clean_upto_ = 0;  // points when conform_segments last returned
+  std::vector<char> acute_;               // per PLC vertex: a small angle meets there (find_acute)
   // GSSE_CONFORM_TRACE=1: per round, the number of splits and which rule/action fired how often
   bool trace_on_ = std::getenv("GSSE_CONFORM_TRACE") != nullptr;
   std::map<std::string, std::size_t> trace_;
@@ -396,13 +518,24 @@ class state {
 // ------------------------------------------------------------------------------------------ 3D
 struct facet_state {
   int axis = 2;
-  std::vector<std::vector<std::pair<std::uint32_t, bool>>> loops;  // per polygon: (edge, forward)
+  std::uint32_t source = 0;                                        // input facet naming it (first member)
+  std::vector<std::pair<std::uint32_t, bool>> sides;               // (edge, forward): facet on the left
   std::vector<vertex_id> interior;                                 // Steiner and embedded points
   std::set<vertex_id> corners;                                     // PLC vertices of the facet
   std::vector<std::array<vertex_id, 3>> triangles;                 // ccw in the projection
+  // the triangles by cells of a uniform grid over their projected boxes (locate())
+  struct triangle_cells {
+    point2 lo{};
+    double inv = 1;
+    long nx = 0, ny = 0;
+    std::vector<std::uint32_t> start, items;
+  } cells;
   std::vector<vertex_id> wrapped;                                  // sorted vertices when triangulated
   std::size_t boundary_size = 0;                                   // chain vertices when triangulated
   std::array<bool, 3> constant{};                                  // coordinate shared by all corners
+  // a slanted facet's plane (unit normal through the corners' centroid) and an orthonormal frame
+  // of it (e1 x e2 = unit) in which it is triangulated (front::wrap_frame)
+  point3 unit{}, centre{}, e1{}, e2{};
   std::array<double, 3> constant_value{};
   // encroachment bookkeeping (see encroachers()): whether `triangles` were all checked at the last
   // check and which were clean then; after a new triangulation, the sorted corners of the old
@@ -422,82 +555,97 @@ struct facet_state {
 class state3 : public state<3> {
  public:
   state3(const plc<3>& p, const std::vector<point3>& volume, const options& o) : state<3>(p, volume, o) {
-    facets_.resize(p.facets.size());
-    for (std::uint32_t f = 0; f < p.facets.size(); ++f) setup_facet(f);
+    input::facet_options fo;
+    fo.merge_coplanar = o.merge_coplanar;
+    std::vector<input::facet_region> regions;
+    try {
+      regions = input::facet_regions(p, fo);
+    } catch (const input::input_error& e) {
+      throw conform_error(e.what());
+    }
+    facets_.resize(regions.size());
+    for (std::uint32_t f = 0; f < regions.size(); ++f) setup_facet(f, regions[f]);
+    // each edge's way into its first facet (on_edge)
+    for (std::uint32_t f = 0; f < regions.size(); ++f)
+      for (auto [e, fw] : facets_[f].sides) {
+        auto& E = edges_[e];
+        if (dot(E.inward, E.inward) != 0) continue;
+        const point3& n = regions[f].normal;
+        const point3 d = fw ? out_.points[E.v] - out_.points[E.u] : out_.points[E.u] - out_.points[E.v];
+        // the facet lies on the left of d in the projection dropping its axis
+        const point3 w = (n[static_cast<std::size_t>(S_axis(f))] > 0 ? 1.0 : -1.0) * cross(n, d);
+        E.inward = (1.0 / std::sqrt(dot(w, w))) * w;
+        const point3 side = cross(out_.points[E.v] - out_.points[E.u], E.inward);
+        const double big = std::max({std::abs(n[0]), std::abs(n[1]), std::abs(n[2])});
+        for (std::size_t k = 0; k < 3; ++k)
+          E.inside_sign[k] = std::abs(n[k]) >= 0.1 * big ? (side[k] > 0 ? 1 : -1) : 0;
+      }    find_acute3();
+  }
+  int S_axis(std::uint32_t f) const { return facets_[f].axis; }
+
+  /// find_acute(), and also vertices where an edge meets a facet through the vertex that does not
+  /// contain it at less than 60 degrees.
+  void find_acute3() {
+    find_acute();
+    const auto& p = out_.points;
+    for (std::uint32_t f = 0; f < facets_.size(); ++f)
+      for (vertex_id v : facets_[f].corners) {
+        if (v >= acute_.size() || acute_[v] || !vertex_edges_.count(v)) continue;
+        for (auto e : vertex_edges_.at(v)) {
+          const auto& E = edges_[e];
+          if (std::find(E.facets.begin(), E.facets.end(), f) != E.facets.end()) continue;
+          const point3 d = p[E.u == v ? E.v : E.u] - p[v];
+          if (std::abs(dot(d, facets_[f].unit)) < 0.8660254 * std::sqrt(dot(d, d))) acute_[v] = 1;
+        }
+      }
   }
 
-  void setup_facet(std::uint32_t f) {
-    const auto& F = plc_.facets[f];
+  /// Facet f from its region: constraint edges (registered as PLC edges) and embedded points.
+  void setup_facet(std::uint32_t f, const input::facet_region& R) {
     auto& S = facets_[f];
-    const std::string where = plc_.source + ":" + std::to_string(F.line) + ": facet " + std::to_string(f + 1);
-    if (!F.holes.empty()) throw conform_error(where + ": facet hole points are not supported yet");
-    // plane: Newell normal of the largest polygon
-    point3 n{0, 0, 0};
-    for (const auto& poly : F.polygons)
-      for (std::size_t i = 0; i < poly.size() && poly.size() >= 3; ++i) {
-        const point3 &a = out_.points[poly[i]], &b = out_.points[poly[(i + 1) % poly.size()]];
-        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-      }
-    if (n[0] == 0 && n[1] == 0 && n[2] == 0) throw conform_error(where + ": has no polygon with area");
-    S.axis = 0;
-    for (int k = 1; k < 3; ++k)
-      if (std::abs(n[static_cast<std::size_t>(k)]) > std::abs(n[static_cast<std::size_t>(S.axis)])) S.axis = k;
-    for (const auto& poly : F.polygons) {
-      for (vertex_id v : poly) S.corners.insert(v);
-      if (poly.size() == 1) {
-        S.interior.push_back(poly[0]);
-        continue;
-      }
-      if (poly.size() == 2) throw conform_error(where + ": embedded edges (2-vertex polygons) are not supported yet");
-      // orientation in the projection from the lexicographically smallest (hence convex) corner
-      std::size_t m = 0;
-      for (std::size_t i = 1; i < poly.size(); ++i)
-        if (lex_less(geometry::project(out_.points[poly[i]], S.axis), geometry::project(out_.points[poly[m]], S.axis))) m = i;
-      const vertex_id prev = poly[(m + poly.size() - 1) % poly.size()], next = poly[(m + 1) % poly.size()];
-      const int o = geometry::orient_projected(out_.points[prev], out_.points[poly[m]], out_.points[next], S.axis);
-      if (o == 0) throw conform_error(where + ": polygon is degenerate at vertex " + std::to_string(poly[m] + 1));
-      std::vector<std::pair<std::uint32_t, bool>> loop;
-      for (std::size_t i = 0; i < poly.size(); ++i) {
-        std::size_t j = (i + 1) % poly.size();
-        vertex_id a = poly[i], b = poly[j];
-        if (o < 0) std::swap(a, b);
-        const auto e = edge_id(a, b, F.line);
-        loop.push_back({e, edges_[e].u == a});
-        if (std::find(edges_[e].facets.begin(), edges_[e].facets.end(), f) == edges_[e].facets.end())
-          edges_[e].facets.push_back(f);
-      }
-      if (o < 0) std::reverse(loop.begin(), loop.end());
-      S.loops.push_back(std::move(loop));
+    S.source = R.members[0];
+    S.axis = R.axis;
+    const std::size_t line = plc_.facets[S.source].line;
+    for (const auto& [a, b] : R.edges) {
+      const auto e = edge_id(a, b, line);
+      S.sides.push_back({e, edges_[e].u == a});
+      if (std::find(edges_[e].facets.begin(), edges_[e].facets.end(), f) == edges_[e].facets.end())
+        edges_[e].facets.push_back(f);
+      S.corners.insert(a);
+      S.corners.insert(b);
     }
-    // every corner must lie in the facet's plane
-    std::size_t i0 = 0, i1 = 1, i2 = 2;
-    bool found = false;
-    for (const auto& poly : F.polygons) {
-      if (poly.size() < 3) continue;
-      for (std::size_t k = 2; k < poly.size() && !found; ++k)
-        if (!geometry::collinear(out_.points[poly[0]], out_.points[poly[1]], out_.points[poly[k]])) {
-          i0 = poly[0], i1 = poly[1], i2 = poly[k];
-          found = true;
-        }
+    for (vertex_id v : R.points) {
+      S.corners.insert(v);
+      S.interior.push_back(v);
     }
-    if (!found) throw conform_error(where + ": all corners are collinear");
     for (std::size_t k = 0; k < 3; ++k) {
       S.constant[k] = true;
       S.constant_value[k] = out_.points[*S.corners.begin()][k];
       for (vertex_id v : S.corners) S.constant[k] = S.constant[k] && out_.points[v][k] == S.constant_value[k];
     }
-    for (vertex_id v : S.corners)
-      if (geometry::orient3d(out_.points[i0], out_.points[i1], out_.points[i2], out_.points[v]) != 0)
-        throw conform_error(where + ": vertex " + std::to_string(v + 1) + " is not in the facet's plane");
+    S.unit = (1.0 / std::sqrt(dot(R.normal, R.normal))) * R.normal;
+    for (vertex_id v : S.corners) S.centre = S.centre + out_.points[v];
+    S.centre = (1.0 / static_cast<double>(S.corners.size())) * S.centre;
+    std::size_t least = 0;  // the axis most across the plane gives a well-conditioned e1
+    for (std::size_t k = 1; k < 3; ++k)
+      if (std::abs(S.unit[k]) < std::abs(S.unit[least])) least = k;
+    point3 axis{};
+    axis[least] = 1;
+    S.e1 = cross(S.unit, axis);
+    S.e1 = (1.0 / std::sqrt(dot(S.e1, S.e1))) * S.e1;
+    S.e2 = cross(S.unit, S.e1);
+  }
+
+  /// "FILE: facet N" of the input facet that names facet f (the first of a merged group).
+  std::string facet_name(std::uint32_t f) const {
+    return plc_.source + ":" + std::to_string(plc_.facets[facets_[f].source].line) + ": facet " +
+           std::to_string(facets_[f].source + 1);
   }
 
   /// All vertices of facet f.
   std::vector<vertex_id> facet_vertices(std::uint32_t f) const {
     std::vector<vertex_id> vs(facets_[f].interior);
-    for (const auto& loop : facets_[f].loops)
-      for (auto [e, fw] : loop) vs.insert(vs.end(), edges_[e].chain.begin(), edges_[e].chain.end());
+    for (auto [e, fw] : facets_[f].sides) vs.insert(vs.end(), edges_[e].chain.begin(), edges_[e].chain.end());
     std::sort(vs.begin(), vs.end());
     vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
     return vs;
@@ -505,8 +653,7 @@ class state3 : public state<3> {
 
   std::size_t boundary_size(std::uint32_t f) const {
     std::size_t n = 0;
-    for (const auto& loop : facets_[f].loops)
-      for (auto [e, fw] : loop) n += edges_[e].chain.size();
+    for (auto [e, fw] : facets_[f].sides) n += edges_[e].chain.size();
     return n;
   }
 
@@ -533,36 +680,54 @@ class state3 : public state<3> {
     std::set_difference(vs.begin(), vs.end(), S.wrapped.begin(), S.wrapped.end(), std::back_inserter(added));
     const front::facet_rewrap again{previous, added};
     const bool reuse = !previous.empty() && added.size() + S.wrapped.size() == vs.size();  // vertices only grow
-    const auto grid = front::make_grid(out_.points, S.axis, vs);
-    for (const auto& loop : S.loops) {
-      std::vector<std::array<vertex_id, 2>> b;
-      for (auto [e, fw] : loop) {
-        const auto& ch = edges_[e].chain;
-        if (fw)
-          for (std::size_t i = 0; i + 1 < ch.size(); ++i) b.push_back({ch[i], ch[i + 1]});
-        else
-          for (std::size_t i = ch.size() - 1; i > 0; --i) b.push_back({ch[i], ch[i - 1]});
-      }
-      try {
-        // an axis-aligned facet's points share the dropped coordinate exactly (splits copy it)
-        auto t = front::wrap_facet(out_.points, S.axis, grid, b, plc_.source + ": facet " + std::to_string(f + 1),
-                                   nullptr, 0, S.constant[static_cast<std::size_t>(S.axis)], reuse ? &again : nullptr);
-        S.triangles.insert(S.triangles.end(), t.begin(), t.end());
-      } catch (const front::front_error& e) {
-        throw conform_error(std::string(e.what()) + " (facet polygons overlap or self-intersect?)");
-      }
+    // every constraint edge at once: outer loops, loops around holes (reversed) and edges with
+    // the facet on both sides (both directions) bound one region
+    std::vector<std::array<vertex_id, 2>> b;
+    for (auto [e, fw] : S.sides) {
+      const auto& ch = edges_[e].chain;
+      if (fw)
+        for (std::size_t i = 0; i + 1 < ch.size(); ++i) b.push_back({ch[i], ch[i + 1]});
+      else
+        for (std::size_t i = ch.size() - 1; i > 0; --i) b.push_back({ch[i], ch[i - 1]});
     }
+    try {
+      if (S.constant[static_cast<std::size_t>(S.axis)]) {
+        // an axis-aligned facet's points share the dropped coordinate exactly (splits copy it)
+        const auto grid = front::make_grid(out_.points, S.axis, vs);
+        S.triangles = front::wrap_facet(out_.points, S.axis, grid, b, facet_name(f), nullptr, 0, true,
+                                        reuse ? &again : nullptr, &lines_);
+      } else {
+        std::vector<point2> uv(vs.size());
+        for (std::size_t i = 0; i < vs.size(); ++i) {
+          const point3 d = out_.points[vs[i]] - S.centre;
+          uv[i] = {dot(d, S.e1), dot(d, S.e2)};
+        }
+        S.triangles = front::wrap_frame(vs, uv, b, facet_name(f), &lines_, reuse ? &again : nullptr);
+      }
+    } catch (const front::front_error& e) {
+      throw conform_error(std::string(e.what()) + " (facet polygons overlap or self-intersect?)");
+    }
+    index_triangles(f);
     S.wrapped = std::move(vs);
   }
 
   /// Triangulates the given facets, in parallel: each reads the shared points and chains and
   /// writes only its own facet state.
   void triangulate_all(const std::vector<std::uint32_t>& fs) {
+    // which points lie inside which PLC edge: split points of a slanted edge are on its line only
+    // up to rounding, and the facet triangulation takes them as collinear (front::facet_lines)
+    edge_of_.resize(out_.points.size());
+    for (std::size_t v = 0; v < out_.points.size(); ++v)
+      edge_of_[v] = out_.homes[v].kind == home::edge ? out_.homes[v].id + 1 : 0;
+    ends_.resize(edges_.size());
+    for (std::size_t e = 0; e < edges_.size(); ++e) ends_[e] = {edges_[e].u, edges_[e].v};
+    lines_ = {edge_of_, ends_};
     for_each(execution::par(opt_.threads), fs, [&](std::uint32_t f) { triangulate(f); },
              [&](std::uint32_t f) { return static_cast<double>(vertex_count(f)); });
   }
 
-  /// The encroacher of subfacet abc (smallest id strictly inside its closed equatorial ball, or a
+  /// The encroacher of subfacet abc (strictly inside its closed equatorial ball: the smallest id in
+  /// the nearest ring of grid cells holding one, see segment_encroacher; or a
   /// tie that keeps it out of the cospherical Delaunay set), or no_vertex. Read-only: facets are
   /// checked in parallel, each thread with its own `ties` scratch. (cc, r): the ball's bound,
   /// detail::equatorial_bound.
@@ -570,17 +735,17 @@ class state3 : public state<3> {
                              std::vector<vertex_id>& ties) const {
     const auto& p = out_.points;
     point3 lo, hi;
-    for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
+    ball_box(cc, r, lo, hi);
     vertex_id strict = no_vertex;
     ties.clear();
     const double r2 = r * r;
-    grid_.visit(lo, hi, [&](vertex_id y) {
+    grid_.visit_rings(cc, lo, hi, [&](vertex_id y) {
       if (y == a || y == b || y == c || (strict != no_vertex && y > strict)) return;
       if (squared_distance(cc, p[y]) > r2) return;  // double prefilter, padded
       const int s = geometry::in_equatorial(p[a], p[b], p[c], p[y]);
       if (s > 0) strict = y;
       else if (s == 0) ties.push_back(y);
-    });
+    }, [&] { return strict != no_vertex; });
     if (strict != no_vertex) return strict;
     if (ties.empty()) return no_vertex;
     std::sort(ties.begin(), ties.end());
@@ -599,8 +764,7 @@ class state3 : public state<3> {
         if (corner_of(w)) common.push_back(w);
       if (common.size() >= 2) {
         // a shared PLC edge?
-        for (const auto& loop : facets_[h.id].loops)
-          for (auto [e, fw] : loop)
+        for (auto [e, fw] : facets_[h.id].sides)
             if (corner_of(edges_[e].u) && corner_of(edges_[e].v) &&
                 std::find(edges_[e].facets.begin(), edges_[e].facets.end(), f) != edges_[e].facets.end()) {
               se = std::array<vertex_id, 2>{edges_[e].u, edges_[e].v};
@@ -631,39 +795,90 @@ class state3 : public state<3> {
   }
 
   /// The triangle of facet f containing q (closed), or -1.
+  /// Files the triangles of facet f in a uniform grid of about one triangle per cell, by their
+  /// projected boxes (padded: the exact test decides), so that locate() tests a few of them.
+  void index_triangles(std::uint32_t f) {
+    auto& S = facets_[f];
+    auto& C = S.cells;
+    const auto& p = out_.points;
+    C = {};
+    if (S.triangles.empty()) return;
+    std::vector<std::array<point2, 2>> box(S.triangles.size());
+    point2 lo{1e300, 1e300}, hi{-1e300, -1e300};
+    for (std::size_t t = 0; t < S.triangles.size(); ++t) {
+      point2 a{1e300, 1e300}, b{-1e300, -1e300};
+      for (auto v : S.triangles[t]) {
+        const point2 x = geometry::project(p[v], S.axis);
+        for (std::size_t k = 0; k < 2; ++k) a[k] = std::min(a[k], x[k]), b[k] = std::max(b[k], x[k]);
+      }
+      for (std::size_t k = 0; k < 2; ++k) {
+        const double pad = 1e-9 * (b[k] - a[k]) + 1e-300;
+        a[k] -= pad, b[k] += pad;
+        lo[k] = std::min(lo[k], a[k]), hi[k] = std::max(hi[k], b[k]);
+      }
+      box[t] = {a, b};
+    }
+    const double area = std::max((hi[0] - lo[0]) * (hi[1] - lo[1]), 1e-300);
+    const double h = std::sqrt(area / static_cast<double>(S.triangles.size()));
+    C.lo = lo;
+    C.inv = 1 / h;
+    C.nx = std::clamp(static_cast<long>((hi[0] - lo[0]) * C.inv) + 1, 1l, 4096l);
+    C.ny = std::clamp(static_cast<long>((hi[1] - lo[1]) * C.inv) + 1, 1l, 4096l);
+    auto range = [&](const point2& a, const point2& b, long& x0, long& x1, long& y0, long& y1) {
+      x0 = std::clamp(static_cast<long>((a[0] - lo[0]) * C.inv), 0l, C.nx - 1);
+      x1 = std::clamp(static_cast<long>((b[0] - lo[0]) * C.inv), 0l, C.nx - 1);
+      y0 = std::clamp(static_cast<long>((a[1] - lo[1]) * C.inv), 0l, C.ny - 1);
+      y1 = std::clamp(static_cast<long>((b[1] - lo[1]) * C.inv), 0l, C.ny - 1);
+    };
+    C.start.assign(static_cast<std::size_t>(C.nx * C.ny) + 1, 0);
+    for (int pass = 0; pass < 2; ++pass) {
+      for (std::uint32_t t = 0; t < box.size(); ++t) {
+        long x0, x1, y0, y1;
+        range(box[t][0], box[t][1], x0, x1, y0, y1);
+        for (long y = y0; y <= y1; ++y)
+          for (long x = x0; x <= x1; ++x) {
+            const auto c = static_cast<std::size_t>(y * C.nx + x);
+            if (pass == 0) ++C.start[c + 1];
+            else C.items[C.start[c]++] = t;
+          }
+      }
+      if (pass == 0) {
+        std::partial_sum(C.start.begin(), C.start.end(), C.start.begin());
+        C.items.resize(C.start.back());
+      } else {  // the fill advanced each start to the next cell's: shift back
+        for (std::size_t c = C.start.size() - 1; c > 0; --c) C.start[c] = C.start[c - 1];
+        C.start[0] = 0;
+      }
+    }
+  }
+
+  /// The triangle of facet f containing q (closed), or -1: the hint first (a split point is
+  /// usually in its triangle), then the triangles filed in q's cell, in ascending order.
   long locate(std::uint32_t f, const point3& q, std::size_t hint = 0) const {
     const auto& S = facets_[f];
+    const auto& C = S.cells;
     const auto& p = out_.points;
-    const point2 pq = geometry::project(q, S.axis);
-    const std::size_t n = S.triangles.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t t = (hint + k) % n;  // from the hint: a split point is usually in its triangle
+    auto inside = [&](std::size_t t) {
       const auto& T = S.triangles[t];
-      // double bounding-box prefilter (padded), exact test after
-      bool out = false;
-      for (int a = 0; a < 2 && !out; ++a) {
-        double lo = 1e300, hi = -1e300;
-        for (auto v : T) {
-          const double c = geometry::project(p[v], S.axis)[static_cast<std::size_t>(a)];
-          lo = std::min(lo, c), hi = std::max(hi, c);
-        }
-        const double pad = 1e-9 * (hi - lo) + 1e-300;
-        out = pq[static_cast<std::size_t>(a)] < lo - pad || pq[static_cast<std::size_t>(a)] > hi + pad;
-      }
-      if (out) continue;
-      if (geometry::orient_projected(p[T[0]], p[T[1]], q, S.axis) >= 0 &&
-          geometry::orient_projected(p[T[1]], p[T[2]], q, S.axis) >= 0 &&
-          geometry::orient_projected(p[T[2]], p[T[0]], q, S.axis) >= 0)
-        return static_cast<long>(t);
-    }
+      return geometry::orient_projected(p[T[0]], p[T[1]], q, S.axis) >= 0 &&
+             geometry::orient_projected(p[T[1]], p[T[2]], q, S.axis) >= 0 &&
+             geometry::orient_projected(p[T[2]], p[T[0]], q, S.axis) >= 0;
+    };
+    if (hint < S.triangles.size() && inside(hint)) return static_cast<long>(hint);
+    if (C.start.empty()) return -1;
+    const point2 pq = geometry::project(q, S.axis);
+    const double x = (pq[0] - C.lo[0]) * C.inv, y = (pq[1] - C.lo[1]) * C.inv;
+    if (!(x >= 0 && y >= 0 && x < static_cast<double>(C.nx) + 1 && y < static_cast<double>(C.ny) + 1)) return -1;
+    const auto c = static_cast<std::size_t>(std::min(static_cast<long>(y), C.ny - 1) * C.nx + std::min(static_cast<long>(x), C.nx - 1));
+    for (auto k = C.start[c]; k < C.start[c + 1]; ++k)
+      if (inside(C.items[k])) return static_cast<long>(C.items[k]);
     return -1;
   }
 
   /// A subsegment of facet f whose diametral ball holds q strictly: (edge, index) or none.
   std::optional<std::pair<std::uint32_t, std::size_t>> encroached_subsegment(std::uint32_t f, const point3& q) const {
     const auto& p = out_.points;
-    for (const auto& loop : facets_[f].loops)
-      for (auto [e, fw] : loop) {
+    for (auto [e, fw] : facets_[f].sides) {
         const auto& ch = edges_[e].chain;
         // A closed diametral ball holds q only if q projects into its subsegment, and the chain
         // runs along its edge: only the subsegments about q's projection, found by bisection,
@@ -712,6 +927,7 @@ class state3 : public state<3> {
     std::uint32_t f;
     std::uint32_t t;
     vertex_id y;
+    bool flat = false;  // would bound a flat Delaunay tetrahedron (flat_pairs): split off-centre
   };
 
   /// The subfacets to split at the start of a round, in facet and triangle order: the encroached
@@ -786,6 +1002,103 @@ class state3 : public state<3> {
     return all;
   }
 
+  /// Which sides of each facet (positive: the side its triangles face) lie in a segment, from the
+  /// labelling of the boundary as it is now (every facet triangulated): the sides of a facet
+  /// belong to the same regions however it is refined.
+  void find_meshed_sides() {
+    boundary<3> b;
+    b.points = out_.points;
+    for (std::uint32_t f = 0; f < facets_.size(); ++f)
+      for (const auto& t : facets_[f].triangles) {
+        b.faces.push_back(t);
+        b.face_source.push_back(facets_[f].source);
+      }
+    labelling l;
+    try {
+      l = label(b, plc_, opt_.threads);
+    } catch (const conform_error&) {
+      // an open boundary, a misplaced region point...: the labelling stage reports it; until
+      // then every side counts as meshed
+      meshed_.assign(facets_.size(), {true, true});
+      return;
+    }
+    meshed_.assign(facets_.size(), {false, false});
+    std::size_t k = 0;
+    for (std::uint32_t f = 0; f < facets_.size(); ++f) {
+      if (!facets_[f].triangles.empty())
+        meshed_[f] = {l.side[k][0] != exterior, l.side[k][1] != exterior};
+      k += facets_[f].triangles.size();
+    }
+  }
+
+  /// Whether the tetrahedron abcd (not exactly flat) has a perturbed-empty circumsphere, i.e. is
+  /// a cell of the Delaunay tetrahedralization of all points.
+  bool delaunay_cell(vertex_id a, vertex_id b, vertex_id c, vertex_id d) const {
+    const auto& p = out_.points;
+    const int o = geometry::orient3d(p[a], p[b], p[c], p[d]);
+    if (o == 0) return false;
+    if (o < 0) std::swap(a, b);
+    auto outside = [&](vertex_id y) {
+      return y == a || y == b || y == c || y == d ||
+             geometry::in_sphere_perturbed(p[a], p[b], p[c], p[d], p[y]) < 0;
+    };
+    // the points about the tetrahedron first: a sphere that is not empty nearly always holds one
+    if (!grid_.visit_ring(0.25 * (p[a] + p[b] + p[c] + p[d]), 1, outside)) return false;
+    point3 cc;
+    double r;
+    geometry::exact_circumball(p[a], p[b], p[c], p[d], cc, r);
+    point3 lo, hi;
+    for (std::size_t k = 0; k < 3; ++k)
+      lo[k] = std::max(cc[k] - r, box_lo_[k]), hi[k] = std::min(cc[k] + r, box_hi_[k]);
+    return grid_.visit(lo, hi, outside);
+  }
+
+  /// Subfacets to split because the front mesher would otherwise build a flat tetrahedron on
+  /// them: two subfacets of one slanted facet sharing an edge whose four points are coplanar and
+  /// cocircular up to rounding (a rotated rectangle) can form a Delaunay tetrahedron of no volume
+  /// that covers the facet twice. Splitting one of them at its circumcentre ends the tie.
+  std::vector<split_candidate> flat_pairs(const std::vector<std::uint32_t>& fs) {
+    const bool any = std::any_of(fs.begin(), fs.end(), [&](std::uint32_t f) {
+      return !facets_[f].constant[static_cast<std::size_t>(facets_[f].axis)];
+    });
+    if (!any) return {};  // exactly planar facets only
+    if (meshed_.empty()) find_meshed_sides();
+    std::vector<std::vector<split_candidate>> found(fs.size());
+    std::vector<std::size_t> ids(fs.size());
+    std::iota(ids.begin(), ids.end(), std::size_t{0});
+    for_each(execution::par(opt_.threads), ids, [&](std::size_t i) {
+      const std::uint32_t f = fs[i];
+      const auto& S = facets_[f];
+      if (S.constant[static_cast<std::size_t>(S.axis)]) return;  // exactly planar: no such tetrahedra
+      // each interior edge once: (sorted edge, triangle, apex)
+      std::vector<std::tuple<std::uint64_t, std::uint32_t, vertex_id>> half;
+      for (std::uint32_t t = 0; t < S.triangles.size(); ++t)
+        for (std::size_t k = 0; k < 3; ++k) {
+          const vertex_id u = S.triangles[t][(k + 1) % 3], v = S.triangles[t][(k + 2) % 3];
+          half.push_back({(std::uint64_t{std::min(u, v)} << 32) | std::max(u, v), t, S.triangles[t][k]});
+        }
+      std::sort(half.begin(), half.end());
+      std::vector<split_candidate> mine;
+      for (std::size_t k = 0; k + 1 < half.size(); ++k) {
+        const auto& [key, t, w] = half[k];
+        const auto& [key2, t2, z] = half[k + 1];
+        if (key != key2) continue;
+        const auto u = static_cast<vertex_id>(key >> 32), v = static_cast<vertex_id>(key & 0xffffffffu);
+        // the tetrahedron lies on the side of triangle t (oriented like the facet) where z is:
+        // only a side that gets meshed matters
+        const auto& T = S.triangles[t];
+        const int o = geometry::orient3d(out_.points[T[0]], out_.points[T[1]], out_.points[T[2]], out_.points[z]);
+        if (o == 0 || !meshed_[f][o > 0 ? 0 : 1]) continue;
+        if (delaunay_cell(u, v, w, z)) mine.push_back({f, std::max(t, t2), no_vertex, true});
+      }
+      std::sort(mine.begin(), mine.end(), [](const split_candidate& x, const split_candidate& y) { return x.t < y.t; });
+      found[i] = std::move(mine);
+    }, [&](std::size_t i) { return static_cast<double>(facets_[fs[i]].triangles.size()); });
+    std::vector<split_candidate> all;
+    for (auto& v : found) all.insert(all.end(), v.begin(), v.end());
+    return all;
+  }
+
   /// A subfacet split worked out from the state at the start of phase C's loop (split_plan()),
   /// in parallel; the loop then only applies it, unless the state it read has changed since.
   struct split_plan {
@@ -805,7 +1118,12 @@ class state3 : public state<3> {
     const auto& T = S.triangles[c.t];
     split_plan s;
     const std::vector<point3> elem{p[T[0]], p[T[1]], p[T[2]]};
-    if (c.y != no_vertex) {
+    if (c.flat) {
+      // not the circumcentre: a rotated rectangle's is its centre, and splitting the encroached
+      // sides there makes rectangles again, each as cocircular as the first. A point at fixed,
+      // unremarkable barycentric weights (or its projection on a side it encroaches) ends the tie.
+      s.q = 0.4142 * elem[0] + 0.3319 * elem[1] + 0.2539 * elem[2];
+    } else if (c.y != no_vertex) {
       s.h = out_.homes[c.y];
       // a free vertex exactly inside the facet becomes a facet vertex
       if (s.h.kind == home::free && geometry::orient3d(p[T[0]], p[T[1]], p[T[2]], p[c.y]) == 0 && locate(c.f, p[c.y], c.t) >= 0) {
@@ -817,33 +1135,42 @@ class state3 : public state<3> {
       s.rel = facet_relation(c.f, s.h, sv, se);
       std::array<point3, 2> edge_pts{};
       if (se) edge_pts = {p[(*se)[0]], p[(*se)[1]]};
-      s.q = split_point_of(element_kind::subfacet, s.rel, elem, p[c.y], sv ? &p[*sv] : nullptr, se ? &edge_pts : nullptr, s.fired);
+      s.q = split_point_of(element_kind::subfacet, s.rel, elem, p[c.y], sv ? &p[*sv] : nullptr, se ? &edge_pts : nullptr, nullptr,
+                           s.fired);
     } else {
-      s.q = split_point_of(element_kind::subfacet, relation::on_carrier, elem, elem[0], nullptr, nullptr, s.fired);
+      s.q = split_point_of(element_kind::subfacet, relation::on_carrier, elem, elem[0], nullptr, nullptr, nullptr, s.fired);
     }
     plan_subsegment(c.f, s);
     s.at = s.q;
     if (locate(c.f, s.at, c.t) < 0) s.at = (1.0 / 3) * (elem[0] + elem[1] + elem[2]);  // outside: centroid
+    if (!S.constant[static_cast<std::size_t>(S.axis)])  // onto the slanted facet's plane: no drift
+      s.at = s.at - dot(s.at - S.centre, S.unit) * S.unit;
     for (std::size_t k = 0; k < 3; ++k)  // exact on axis-aligned facets
       if (S.constant[k]) s.at[k] = S.constant_value[k];
     return s;
   }
   /// A split point encroaching a subsegment of the facet splits that subsegment instead.
   void plan_subsegment(std::uint32_t f, split_plan& s) const {
-    const auto& p = out_.points;
     s.sub = encroached_subsegment(f, s.q);
     s.fired_sub.reset();
     if (!s.sub) return;
-    const auto& E = edges_[s.sub->first];
-    const point3 a = p[E.chain[s.sub->second]], b = p[E.chain[s.sub->second + 1]];
-    s.m = snap_to_edge(split_point_of(element_kind::subsegment, relation::on_incident_edge, {a, b}, s.q, nullptr, nullptr, s.fired_sub), a, b);
+    s.m = subsegment_split(s.sub->first, s.sub->second, relation::on_incident_edge, s.q, nullptr, s.fired_sub);
   }
 
   /// Phase C: split encroached (or, with a size, too large) subfacets. Returns the number of splits.
-  std::size_t conform_facets() {
+  std::size_t conform_facets(const std::vector<split_candidate>& flat) {
     std::size_t splits = 0;
     const auto& p = out_.points;
-    const auto todo = encroachers();
+    auto todo = encroachers();
+    if (!flat.empty()) {  // in facet and triangle order, each subfacet once
+      auto before = [](const split_candidate& x, const split_candidate& y) { return std::pair(x.f, x.t) < std::pair(y.f, y.t); };
+      std::vector<split_candidate> merged;
+      std::merge(flat.begin(), flat.end(), todo.begin(), todo.end(), std::back_inserter(merged), before);
+      merged.erase(std::unique(merged.begin(), merged.end(), [](const split_candidate& x, const split_candidate& y) {
+                     return x.f == y.f && x.t == y.t;
+                   }), merged.end());  // a flat one first: its split point, not the rule's
+      todo = std::move(merged);
+    }
     // The splits are planned in parallel, then applied in order. A plan is made again if what it
     // read changed meanwhile: the encroacher's home (claimed by an earlier facet) or, for the
     // subsegment test, a chain of the facet (split by an earlier plan).
@@ -857,7 +1184,7 @@ class state3 : public state<3> {
     recent_points<3> fresh(p[0], 2 * grid_h_);  // few points: larger cells, fewer lookups per ball
     auto note = [&](vertex_id v) { fresh.add(v, p[v]); };
     for (std::size_t k = 0; k < todo.size(); ++k) {
-      const auto [f, t, y] = todo[k];
+      const auto [f, t, y, flat_pair] = todo[k];
       auto& S = facets_[f];
       // not stale: no point inserted in this phase lies in its ball, so the encroacher found at
       // the start of the round stands (triangles change only next round)
@@ -874,6 +1201,22 @@ class state3 : public state<3> {
         ++splits;
         continue;
       }
+      // a point that exists already (an encroacher rotated onto the image an earlier split made
+      // of it) would not end the encroachment, and the same split would come back every round:
+      // split off-centre instead
+      const auto& T = S.triangles[t];
+      const double scale = std::sqrt(std::min({squared_distance(p[T[0]], p[T[1]]), squared_distance(p[T[1]], p[T[2]]),
+                                               squared_distance(p[T[2]], p[T[0]])}));
+      if (occupied(s.sub ? s.m : s.at, scale)) s = plan_split(todo[k]);  // made by a split of this phase
+      if (occupied(s.sub ? s.m : s.at, scale)) {
+        auto c = todo[k];
+        c.flat = true;
+        s = plan_split(c);
+        if (occupied(s.sub ? s.m : s.at, scale))
+          throw conform_error(facet_name(f) + ": no new split point for a subfacet near " +
+                              std::to_string(S.triangles[t][0] + 1) + " (every candidate is an existing point)");
+      }
+      if (trace_on_ && (flat_pair || !s.fired)) ++trace_[flat_pair ? "subfacet/flat-pair/off-centre" : "subfacet/off-centre"];
       count_split(element_kind::subfacet, s.rel, s.fired);
       if (s.sub) {
         count_split(element_kind::subsegment, relation::on_incident_edge, s.fired_sub);
@@ -906,17 +1249,16 @@ class state3 : public state<3> {
     const auto base = static_cast<vertex_id>(out_.points.size());
     for_each(execution::par(opt_.threads), ids, [&](std::uint32_t f) {
       const auto& S = facets_[f];
-      if (S.loops.empty()) return;
+      if (S.sides.empty()) return;
       const auto vs = facet_vertices(f);
       const point3 o = out_.points[vs[0]];
-      // in-plane orthonormal basis (u along the first boundary edge)
-      const auto& e0 = edges_[S.loops[0][0].first];
+      // in-plane orthonormal basis (u along the first boundary edge, n the facet's normal: not a
+      // cross product of two of its points, which may lie on one slanted edge)
+      const auto& e0 = edges_[S.sides[0].first];
+      const point3& n = S.unit;
       point3 u = out_.points[e0.v] - out_.points[e0.u];
-      point3 n{0, 0, 0};
-      for (std::size_t i = 1; i + 1 < vs.size() && dot(n, n) == 0; ++i) n = cross(u, out_.points[vs[i + 1]] - out_.points[vs[0]]);
-      if (dot(n, n) == 0) return;
+      u = u - dot(u, n) * n;
       u = (1.0 / std::sqrt(dot(u, u))) * u;
-      n = (1.0 / std::sqrt(dot(n, n))) * n;
       const point3 v = cross(n, u);
       double ulo = 1e300, uhi = -1e300, vlo = 1e300, vhi = -1e300;
       for (vertex_id w : vs) {
@@ -971,7 +1313,7 @@ class state3 : public state<3> {
         if (vertex_count(f) != seen[f]) changed.push_back(f);
       triangulate_all(changed);
       for (auto f : changed) seen[f] = vertex_count(f);
-      const std::size_t facet_splits = conform_facets();
+      const std::size_t facet_splits = conform_facets(flat_pairs(changed));
       if (trace)
         std::fprintf(stderr, "conform round %zu: %zu subsegment splits, %zu subfacet splits, %zu points\n", out_.rounds,
                      seg_splits, facet_splits, out_.points.size());
@@ -984,13 +1326,17 @@ class state3 : public state<3> {
     for (std::uint32_t f = 0; f < facets_.size(); ++f)
       for (const auto& t : facets_[f].triangles) {
         out_.faces.push_back(t);
-        out_.face_source.push_back(f);
+        out_.face_source.push_back(facets_[f].source);
       }
     return std::move(out_);
   }
 
  private:
   std::vector<facet_state> facets_;
+  std::vector<std::uint32_t> edge_of_;
+  std::vector<std::array<vertex_id, 2>> ends_;
+  std::vector<std::array<bool, 2>> meshed_;  // per facet: is its positive / negative side in a segment
+  front::facet_lines lines_;
   std::size_t checked_upto_ = 0;  // points that existed at the last check of every facet
 };
 
@@ -999,6 +1345,7 @@ class state3 : public state<3> {
 boundary<2> conform(const plc<2>& p, const std::vector<point2>& volume, const options& o) {
   state<2> s(p, volume, o);
   for (const auto& e : p.edges) s.edge_id(e[0], e[1], 0);
+  s.find_acute();
   s.presplit_edges();
   ++s.out().rounds;
   s.conform_segments();

@@ -1,5 +1,6 @@
 #include "gsse/front/front_mesher.hpp"
 
+#include <algorithm>
 #include <type_traits>
 
 #include "gsse/front/gift_wrap.hpp"
@@ -93,12 +94,46 @@ std::vector<std::array<vertex_id, 3>> wrap_wall(std::span<const point2> pts, con
 std::vector<std::array<vertex_id, 3>> wrap_facet(std::span<const point3> pts, int axis, const point_grid<2>& grid,
                                                  const std::vector<std::array<vertex_id, 2>>& boundary,
                                                  const std::string& label, wrap_stats* stats, std::size_t max_cells,
-                                                 bool coplanar, const facet_rewrap* again) {
-  const facet_kernel k{pts, axis, coplanar};
+                                                 bool coplanar, const facet_rewrap* again, const facet_lines* lines) {
+  const facet_kernel k{pts, axis, coplanar, lines};
   gift_wrapper<facet_kernel> w(k, grid);
   if (again) w.reuse(again->previous, again->added);
   auto cells = w.run(boundary, label, max_cells);
   if (stats) *stats += w.stats();
+  return cells;
+}
+
+std::vector<std::array<vertex_id, 3>> wrap_frame(std::span<const vertex_id> ids, std::span<const point2> uv,
+                                                 const std::vector<std::array<vertex_id, 2>>& boundary,
+                                                 const std::string& label, const facet_lines* lines,
+                                                 const facet_rewrap* again) {
+  const point_grid<2> grid(uv, ids);
+  // id -> position in the grid's order (ids ascending: bisection in this table)
+  std::vector<std::pair<vertex_id, vertex_id>> at(grid.size());
+  for (std::size_t k = 0; k < grid.size(); ++k) at[k] = {grid.id_at(k), static_cast<vertex_id>(k)};
+  std::sort(at.begin(), at.end());
+  auto pos = [&](vertex_id v) {
+    const auto it = std::lower_bound(at.begin(), at.end(), std::pair<vertex_id, vertex_id>{v, 0});
+    if (it == at.end() || it->first != v) throw front_error(label + ": boundary vertex " + std::to_string(v + 1) + " is not a point of the facet");
+    return it->second;
+  };
+  frame_kernel k;
+  k.p = grid.coords();
+  k.grid = &grid;
+  k.lines = lines;
+  gift_wrapper<frame_kernel, true> w(k, grid);
+  std::vector<std::array<vertex_id, 3>> previous;
+  std::vector<vertex_id> added;
+  if (again) {
+    for (const auto& t : again->previous) previous.push_back({pos(t[0]), pos(t[1]), pos(t[2])});
+    for (vertex_id v : again->added) added.push_back(pos(v));
+    w.reuse(previous, added);
+  }
+  std::vector<std::array<vertex_id, 2>> b(boundary);
+  for (auto& e : b) e = {pos(e[0]), pos(e[1])};
+  auto cells = w.run(b, label, 0);
+  for (auto& c : cells)
+    for (auto& v : c) v = grid.id_at(v);
   return cells;
 }
 

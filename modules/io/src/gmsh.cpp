@@ -177,17 +177,24 @@ class msh_cursor {
 
 struct msh_block {
   int dim, entity, type;
-  std::vector<vertex_id> conn;
-  std::size_t where;  // position of the block header, for messages
+  std::vector<vertex_id> conn;    // kept types (triangles, quadrangles, tetrahedra) only
+  std::vector<std::size_t> at;    // position of each kept surface element, for messages
+  std::size_t where;              // position of the block header (2.2: of its first element)
 };
 
 struct msh_content {
   std::map<std::pair<int, int>, std::string> names;
   std::map<std::pair<int, int>, std::vector<int>> physicals;
   std::vector<point3> nodes;
-  std::vector<std::size_t> node_at;  // position of each node's coordinates, for messages
-  std::vector<msh_block> blocks;     // triangle and tetrahedron blocks
+  std::vector<std::size_t> node_at;      // position of each node's coordinates, for messages
+  std::vector<std::uint64_t> node_tags;  // the file's tag of each node, for messages
+  std::vector<msh_block> blocks;         // triangle, quadrangle and tetrahedron blocks
+  std::vector<msh_block> others;         // headers of the other 2D and 3D element blocks
+  std::vector<int> volumes;              // volume entity tags in file order (4.1 $Entities)
+  std::map<int, std::vector<int>> bounds;     // volume tag -> its bounding surface tags (signed)
+  std::map<int, std::size_t> volume_at;       // volume tag -> position of its $Entities record
   bool binary = false;
+  bool v2 = false;  // version 2.2
 };
 
 constexpr long long int_max = std::numeric_limits<std::int32_t>::max();
@@ -199,6 +206,7 @@ void read_entities(msh_cursor& c, msh_content& m) {
   for (int d = 0; d < 4; ++d) {
     c.check_count(count[d], 8, "number of entities");
     for (std::uint64_t e = 0; e < count[d]; ++e) {
+      const auto where = c.mark();
       const int tag = static_cast<int>(c.read_int("entity tag", -int_max, int_max));
       for (int k = 0; k < (d == 0 ? 3 : 6); ++k) (void)c.read_real("entity coordinate");
       const auto np = c.read_size("number of physical tags", int_max);
@@ -208,7 +216,13 @@ void read_entities(msh_cursor& c, msh_content& m) {
       if (d > 0) {
         const auto nb = c.read_size("number of bounding entities", int_max);
         c.check_count(nb, 2, "number of bounding entities");
-        for (std::uint64_t k = 0; k < nb; ++k) (void)c.read_int("bounding entity tag", -int_max, int_max);
+        std::vector<int> b;
+        for (std::uint64_t k = 0; k < nb; ++k) b.push_back(static_cast<int>(c.read_int("bounding entity tag", -int_max, int_max)));
+        if (d == 3) {
+          if (!m.bounds.emplace(tag, std::move(b)).second) c.fail_at(where, "volume " + std::to_string(tag) + " listed twice");
+          m.volumes.push_back(tag);
+          m.volume_at[tag] = where;
+        }
       }
     }
   }
@@ -236,6 +250,7 @@ void read_nodes(msh_cursor& c, msh_content& m, std::unordered_map<std::uint64_t,
       const auto tag = c.read_size("node tag", std::numeric_limits<std::uint64_t>::max());
       if (!ids.emplace(tag, static_cast<vertex_id>(m.nodes.size() + k)).second)
         c.fail_at(where, "node tag " + std::to_string(tag) + " defined twice");
+      m.node_tags.push_back(tag);
     }
     for (std::uint64_t k = 0; k < n; ++k) {
       at.push_back(c.mark());
@@ -251,9 +266,95 @@ void read_nodes(msh_cursor& c, msh_content& m, std::unordered_map<std::uint64_t,
   c.expect("$EndNodes");
 }
 
+// Version 2.2: a count line, then 'tag x y z' per node (binary: int32 tag, three doubles).
+void read_nodes_v2(msh_cursor& c, msh_content& m, std::unordered_map<std::uint64_t, vertex_id>& ids) {
+  const auto total = static_cast<std::uint64_t>(c.integer("number of nodes", 0, std::numeric_limits<vertex_id>::max() - 1));
+  if (m.binary) c.begin_binary();
+  c.check_count(total, m.binary ? 28 : 8, "number of nodes");
+  m.nodes.reserve(total);
+  ids.reserve(total);
+  for (std::uint64_t k = 0; k < total; ++k) {
+    const auto where = c.mark();
+    const auto tag = static_cast<std::uint64_t>(c.read_int("node tag", 1, int_max));
+    if (!ids.emplace(tag, static_cast<vertex_id>(m.nodes.size())).second)
+      c.fail_at(where, "node tag " + std::to_string(tag) + " defined twice");
+    m.node_tags.push_back(tag);
+    m.node_at.push_back(c.mark());
+    m.nodes.push_back({c.read_real("node x"), c.read_real("node y"), c.read_real("node z")});
+  }
+  c.end_binary();
+  c.expect("$EndNodes");
+}
+
+// Collects the element blocks of both versions: keeps the connectivity of triangles,
+// quadrangles and tetrahedra, rejects elements that repeat a node or another element's nodes.
+class element_store {
+ public:
+  element_store(msh_cursor& c, msh_content& m) : c_(c), m_(m) {}
+  /// Starts a block; returns the number of nodes per element.
+  int begin(int dim, int entity, int type, std::size_t where) {
+    const auto kind = kind_of(type);
+    if (kind.dim < 0) c_.fail_at(where, "unsupported element type " + std::to_string(type));
+    if (kind.dim != dim)
+      c_.fail_at(where, "element type " + std::to_string(type) + " has dimension " + std::to_string(kind.dim) +
+                            ", block says " + std::to_string(dim));
+    msh_block blk{};
+    blk.dim = dim;
+    blk.entity = entity;
+    blk.type = type;
+    blk.where = where;
+    keep_ = type == 2 || type == 3 || type == 4;
+    nodes_ = kind.nodes;
+    if (keep_) {
+      m_.blocks.push_back(std::move(blk));
+    } else {
+      if (dim >= 2) m_.others.push_back(std::move(blk));
+      cur_ = nullptr;
+      return nodes_;
+    }
+    cur_ = &m_.blocks.back();
+    return nodes_;
+  }
+  /// One element of the current block. `repeats_ok`: an element with the nodes of an earlier
+  /// one of the same entity is dropped (2.2 writes an element once per physical group).
+  void add(std::uint64_t etag, std::size_t where, const vertex_id* nodes, bool repeats_ok) {
+    if (!keep_) return;
+    std::array<vertex_id, 4> key;  // kept elements have at most 4 nodes; the rest is padding
+    key.fill(no_vertex);
+    for (std::size_t k = 0; k < key.size() && k < static_cast<std::size_t>(nodes_); ++k) key[k] = nodes[k];
+    std::sort(key.begin(), key.end());
+    for (std::size_t k = 1; k < key.size() && k < static_cast<std::size_t>(nodes_); ++k)
+      if (key[k] == key[k - 1]) c_.fail_at(where, "element repeats a node");
+    const auto [it, fresh] = seen_.try_emplace(key, seen{etag, cur_->dim, cur_->entity});
+    if (!fresh) {
+      if (repeats_ok && it->second.dim == cur_->dim && it->second.entity == cur_->entity) return;
+      c_.fail_at(where, "element " + std::to_string(etag) + " has the same nodes as element " + std::to_string(it->second.tag));
+    }
+    cur_->conn.insert(cur_->conn.end(), nodes, nodes + nodes_);
+    if (cur_->dim == 2) cur_->at.push_back(where);
+  }
+
+ private:
+  struct seen {
+    std::uint64_t tag;
+    int dim, entity;
+  };
+  msh_cursor& c_;
+  msh_content& m_;
+  msh_block* cur_ = nullptr;
+  bool keep_ = false;
+  int nodes_ = 0;
+  std::unordered_map<std::array<vertex_id, 4>, seen, detail::key_hash> seen_;
+};
+
+vertex_id node_id(msh_cursor& c, const std::unordered_map<std::uint64_t, vertex_id>& ids, std::uint64_t tag, std::size_t at) {
+  const auto it = ids.find(tag);
+  if (it == ids.end()) c.fail_at(at, "element refers to node tag " + std::to_string(tag) + ", which is not defined");
+  return it->second;
+}
+
 void read_elements(msh_cursor& c, msh_content& m, const std::unordered_map<std::uint64_t, vertex_id>& ids) {
-  // sorted corners of every triangle/tetrahedron (triangles padded), to reject repeated elements
-  std::unordered_map<std::array<vertex_id, 4>, std::uint64_t, detail::key_hash> seen_elements;
+  element_store store(c, m);
   if (m.binary) c.begin_binary();
   const auto blocks = c.read_size("number of element blocks", int_max);
   const auto total = c.read_size("number of elements", std::numeric_limits<std::uint32_t>::max());
@@ -261,57 +362,94 @@ void read_elements(msh_cursor& c, msh_content& m, const std::unordered_map<std::
   (void)c.read_size("minimum element tag", std::numeric_limits<std::uint64_t>::max());
   (void)c.read_size("maximum element tag", std::numeric_limits<std::uint64_t>::max());
   std::uint64_t seen = 0;
+  std::vector<vertex_id> nodes;
   for (std::uint64_t b = 0; b < blocks; ++b) {
     const auto where = c.mark();
-    msh_block blk{};
-    blk.where = where;
-    blk.dim = static_cast<int>(c.read_int("entity dimension", 0, 3));
-    blk.entity = static_cast<int>(c.read_int("entity tag", -int_max, int_max));
-    blk.type = static_cast<int>(c.read_int("element type", 1, int_max));
-    const auto kind = kind_of(blk.type);
-    if (kind.dim < 0) c.fail("unsupported element type " + std::to_string(blk.type));
-    if (kind.dim != blk.dim)
-      c.fail("element type " + std::to_string(blk.type) + " has dimension " + std::to_string(kind.dim) +
-             ", block says " + std::to_string(blk.dim));
+    const int dim = static_cast<int>(c.read_int("entity dimension", 0, 3));
+    const int entity = static_cast<int>(c.read_int("entity tag", -int_max, int_max));
+    const int type = static_cast<int>(c.read_int("element type", 1, int_max));
+    const int per = store.begin(dim, entity, type, where);
     const auto n = c.read_size("number of elements in block", total - seen);
     seen += n;
-    const bool keep = blk.type == 2 || blk.type == 4;
-    if (keep) blk.conn.reserve(n * static_cast<std::uint64_t>(kind.nodes));
+    nodes.resize(static_cast<std::size_t>(per));
     for (std::uint64_t e = 0; e < n; ++e) {
+      const auto at = c.mark();
       const auto etag = c.read_size("element tag", std::numeric_limits<std::uint64_t>::max());
-      for (int k = 0; k < kind.nodes; ++k) {
-        const auto at = c.mark();
-        const auto tag = c.read_size("node tag of element", std::numeric_limits<std::uint64_t>::max());
-        const auto it = ids.find(tag);
-        if (it == ids.end()) c.fail_at(at, "element refers to node tag " + std::to_string(tag) + ", which is not defined");
-        if (keep) blk.conn.push_back(it->second);
+      for (int k = 0; k < per; ++k) {
+        const auto nat = c.mark();
+        nodes[static_cast<std::size_t>(k)] = node_id(c, ids, c.read_size("node tag of element", std::numeric_limits<std::uint64_t>::max()), nat);
       }
-      if (keep) {
-        auto b0 = blk.conn.end() - kind.nodes;
-        std::vector<vertex_id> s(b0, blk.conn.end());
-        std::sort(s.begin(), s.end());
-        if (std::adjacent_find(s.begin(), s.end()) != s.end()) c.fail("element repeats a node");
-        std::array<vertex_id, 4> key;
-        key.fill(no_vertex);
-        std::copy(s.begin(), s.end(), key.begin());
-        if (auto [it, fresh] = seen_elements.try_emplace(key, etag); !fresh)
-          c.fail("element " + std::to_string(etag) + " has the same nodes as element " + std::to_string(it->second));
-      }
+      store.add(etag, at, nodes.data(), false);
     }
-    if (keep) m.blocks.push_back(std::move(blk));
   }
   if (seen != total) c.fail("element blocks hold " + std::to_string(seen) + " elements, header says " + std::to_string(total));
   c.end_binary();
   c.expect("$EndElements");
 }
 
-msh_content parse_msh(const std::string& path) {
-  const std::string data = detail::slurp(path);
+// Version 2.2: 'tag type #tags tags... nodes...' per element; tag 1 is the physical group, tag 2
+// the elementary entity. Binary: headers (type, count, #tags) each followed by `count` elements
+// of int32s. Consecutive elements of one entity and type form a block.
+void read_elements_v2(msh_cursor& c, msh_content& m, const std::unordered_map<std::uint64_t, vertex_id>& ids) {
+  element_store store(c, m);
+  const auto total = static_cast<std::uint64_t>(c.integer("number of elements", 0, std::numeric_limits<std::uint32_t>::max()));
+  if (m.binary) c.begin_binary();
+  c.check_count(total, m.binary ? 16 : 8, "number of elements");
+  int cur_dim = -1, cur_entity = 0, cur_type = -1, per = 0;
+  std::uint64_t group_left = 0;  // binary: elements left under the current header
+  int group_type = 0, group_tags = 0;
+  std::vector<vertex_id> nodes;
+  for (std::uint64_t e = 0; e < total; ++e) {
+    if (m.binary && group_left == 0) {
+      group_type = static_cast<int>(c.read_int("element type", 1, int_max));
+      group_left = static_cast<std::uint64_t>(c.read_int("number of elements following", 1, static_cast<long long>(total - e)));
+      group_tags = static_cast<int>(c.read_int("number of tags", 0, 1000));
+    }
+    const auto at = c.mark();
+    const auto etag = static_cast<std::uint64_t>(c.read_int("element tag", 1, int_max));
+    int type = group_type, ntags = group_tags;
+    if (!m.binary) {
+      type = static_cast<int>(c.read_int("element type", 1, int_max));
+      ntags = static_cast<int>(c.read_int("number of tags", 0, 1000));
+    }
+    int physical = 0, entity = 0;
+    for (int k = 0; k < ntags; ++k) {
+      const int t = static_cast<int>(c.read_int("element tag value", -int_max, int_max));
+      if (k == 0) physical = t;
+      if (k == 1) entity = t;
+    }
+    const auto kind = kind_of(type);
+    if (kind.dim < 0) c.fail_at(at, "unsupported element type " + std::to_string(type));
+    if (kind.dim != cur_dim || entity != cur_entity || type != cur_type) {
+      per = store.begin(kind.dim, entity, type, at);
+      cur_dim = kind.dim, cur_entity = entity, cur_type = type;
+    }
+    if (physical != 0) {
+      auto& ph = m.physicals[{kind.dim, entity}];
+      if (std::find(ph.begin(), ph.end(), physical) == ph.end()) ph.push_back(physical);
+    }
+    nodes.resize(static_cast<std::size_t>(per));
+    for (int k = 0; k < per; ++k) {
+      const auto nat = c.mark();
+      nodes[static_cast<std::size_t>(k)] = node_id(c, ids, static_cast<std::uint64_t>(c.read_int("node tag of element", 1, int_max)), nat);
+    }
+    store.add(etag, at, nodes.data(), true);
+    if (m.binary) --group_left;
+  }
+  c.end_binary();
+  c.expect("$EndElements");
+}
+
+// `data` is the whole file; it must outlive the cursor only, not the result.
+msh_content parse_msh(const std::string& path, const std::string& data) {
   msh_cursor c(path, data);
   msh_content m;
   c.expect("$MeshFormat");
   const auto version = c.token("version");
-  if (version != "4.1") c.fail("unsupported .msh version '" + std::string(version.substr(0, 20)) + "', expected 4.1");
+  if (version == "2.2")
+    m.v2 = true;
+  else if (version != "4.1")
+    c.fail("unsupported .msh version '" + std::string(version.substr(0, 20)) + "', expected 4.1 or 2.2");
   m.binary = c.integer("file type (0 ASCII, 1 binary)", 0, 1) == 1;
   const auto size = c.integer("data size", 0, 64);
   if (size != 8) c.fail("data size " + std::to_string(size) + " unsupported, expected 8");
@@ -334,14 +472,20 @@ msh_content parse_msh(const std::string& path) {
         m.names[{dim, tag}] = c.quoted("physical name");
       }
       c.expect("$EndPhysicalNames");
-    } else if (head == "$Entities") {
+    } else if (head == "$Entities" && !m.v2) {
       read_entities(c, m);
     } else if (head == "$Nodes") {
-      read_nodes(c, m, ids);
+      if (m.v2)
+        read_nodes_v2(c, m, ids);
+      else
+        read_nodes(c, m, ids);
       have_nodes = true;
     } else if (head == "$Elements") {
       if (!have_nodes) c.fail("$Elements before $Nodes");
-      read_elements(c, m, ids);
+      if (m.v2)
+        read_elements_v2(c, m, ids);
+      else
+        read_elements(c, m, ids);
     } else if (head.size() > 1 && head[0] == '$') {
       c.skip_to("$End" + std::string(head.substr(1)));  // sections we do not use
       (void)c.token("section end");
@@ -352,15 +496,28 @@ msh_content parse_msh(const std::string& path) {
   return m;
 }
 
+// Duplicate coordinates are an error, as for every other reader: `fail(a, b)` (a < b, the point
+// that repeats a) for the first pair in coordinate order.
+template <std::size_t D, class Fail>
+void check_distinct(const std::vector<point<D>>& pts, Fail&& fail) {
+  std::vector<std::size_t> order(pts.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return lex_less(pts[a], pts[b]) || (pts[a] == pts[b] && a < b); });
+  for (std::size_t k = 1; k < order.size(); ++k)
+    if (pts[order[k]] == pts[order[k - 1]]) fail(std::min(order[k], order[k - 1]), std::max(order[k], order[k - 1]));
+}
+
+// Error at a position of the file: its line (text) or byte offset (binary).
+[[noreturn]] void fail_in_file(const std::string& path, const std::string& data, bool binary, std::size_t pos, const std::string& what) {
+  if (binary) throw io_error::at_byte(path, pos, what);
+  throw io_error(path, 1 + static_cast<std::size_t>(std::count(data.begin(), data.begin() + static_cast<long>(std::min(pos, data.size())), '\n')), what);
+}
+
 template <std::size_t D>
-domain<D> build(const std::string& path, msh_content& m) {
+domain<D> build(const std::string& path, const std::string& data, msh_content& m) {
   constexpr int type = D == 3 ? 4 : 2;
   // positions are line numbers or byte offsets, as the file is text or binary
-  auto fail_at = [&](std::size_t pos, const std::string& what) -> void {
-    if (m.binary) throw io_error::at_byte(path, pos, what);
-    std::string data = detail::slurp(path);
-    throw io_error(path, 1 + static_cast<std::size_t>(std::count(data.begin(), data.begin() + static_cast<long>(pos), '\n')), what);
-  };
+  auto fail_at = [&](std::size_t pos, const std::string& what) { fail_in_file(path, data, m.binary, pos, what); };
   domain<D> d;
   auto& pts = d.mutable_points();
   pts.reserve(m.nodes.size());
@@ -374,16 +531,9 @@ domain<D> build(const std::string& path, msh_content& m) {
     }
     pts.push_back(p);
   }
-  {  // duplicate coordinates are an error, as for every other reader
-    std::vector<std::size_t> order(pts.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](auto a, auto b) { return lex_less(pts[a], pts[b]) || (pts[a] == pts[b] && a < b); });
-    for (std::size_t k = 1; k < order.size(); ++k)
-      if (pts[order[k]] == pts[order[k - 1]]) {
-        const auto a = std::min(order[k], order[k - 1]), b = std::max(order[k], order[k - 1]);
-        fail_at(m.node_at[b], "duplicate point: node " + std::to_string(b + 1) + " (in file order) repeats node " + std::to_string(a + 1));
-      }
-  }
+  check_distinct(pts, [&](std::size_t a, std::size_t b) {
+    fail_at(m.node_at[b], "duplicate point: node " + std::to_string(b + 1) + " (in file order) repeats node " + std::to_string(a + 1));
+  });
   std::map<int, segment<D>*> seg_of;
   for (auto& blk : m.blocks) {
     if (blk.dim != static_cast<int>(D)) continue;
@@ -472,17 +622,184 @@ class msh_writer {
 
 template <std::size_t D>
 domain<D> read_msh(const std::string& path) {
-  auto m = parse_msh(path);
-  return build<D>(path, m);
+  const std::string data = detail::slurp(path);
+  auto m = parse_msh(path, data);
+  return build<D>(path, data, m);
 }
 template domain<2> read_msh<2>(const std::string&);
 template domain<3> read_msh<3>(const std::string&);
 
 std::variant<domain<2>, domain<3>> read_msh_any(const std::string& path) {
-  auto m = parse_msh(path);
+  const std::string data = detail::slurp(path);
+  auto m = parse_msh(path, data);
   const bool tets = std::any_of(m.blocks.begin(), m.blocks.end(), [](const msh_block& b) { return b.type == 4; });
-  if (tets) return build<3>(path, m);
-  return build<2>(path, m);
+  if (tets) return build<3>(path, data, m);
+  return build<2>(path, data, m);
+}
+
+namespace {
+
+std::string element_name(int type) {
+  switch (type) {
+    case 4: return "tetrahedra (type 4)";
+    case 5: return "hexahedra (type 5)";
+    case 6: return "prisms (type 6)";
+    case 7: return "pyramids (type 7)";
+    case 9: return "second-order triangles (type 9)";
+    case 10: return "second-order quadrangles (type 10)";
+    case 16: return "second-order quadrangles (type 16)";
+    default: return "elements of type " + std::to_string(type);
+  }
+}
+
+// Line numbers of increasing positions of a text, in one pass.
+std::vector<std::size_t> lines_of(const std::string& data, const std::vector<std::size_t>& pos) {
+  std::vector<std::size_t> out;
+  out.reserve(pos.size());
+  std::size_t line = 1, at = 0;
+  for (const auto p : pos) {
+    const auto end = std::min(p, data.size());
+    if (end > at) line += static_cast<std::size_t>(std::count(data.begin() + static_cast<long>(at), data.begin() + static_cast<long>(end), '\n'));
+    at = std::max(at, end);
+    out.push_back(line);
+  }
+  return out;
+}
+
+struct edge_use {
+  vertex_id a, b;
+  std::size_t facet;
+  auto operator<=>(const edge_use&) const = default;
+};
+
+// The edges of the given facets' polygons, sorted: each edge's uses form one run.
+std::vector<edge_use> edge_uses(const plc<3>& p, const std::vector<std::size_t>& facets) {
+  std::vector<edge_use> e;
+  for (const auto f : facets)
+    for (const auto& poly : p.facets[f].polygons)
+      for (std::size_t i = 0; i < poly.size(); ++i) {
+        const auto [a, b] = std::minmax(poly[i], poly[(i + 1) % poly.size()]);
+        e.push_back({a, b, f});
+      }
+  std::sort(e.begin(), e.end());
+  return e;
+}
+
+}  // namespace
+
+plc<3> read_msh_plc(const std::string& path, std::vector<plc_volume>* volumes) {
+  if (volumes) volumes->clear();
+  const std::string data = detail::slurp(path);
+  auto m = parse_msh(path, data);
+  auto fail_at = [&](std::size_t pos, const std::string& what) { fail_in_file(path, data, m.binary, pos, what); };
+  for (const auto* list : {&m.blocks, &m.others})
+    for (const auto& b : *list) {
+      if (b.dim == 3)
+        fail_at(b.where, element_name(b.type) + ": a volume mesh, not a surface mesh (mesh the surfaces only, gmsh -2, "
+                         "or read the volume mesh with read_msh)");
+      if (b.type != 2 && b.type != 3)
+        fail_at(b.where, element_name(b.type) + " cannot be surface facets: linear triangles (type 2) and quadrangles "
+                         "(type 3) only (gmsh -order 1)");
+    }
+  std::vector<char> used(m.nodes.size(), 0);
+  std::vector<std::size_t> element_at;  // increasing positions of all surface elements
+  for (const auto& b : m.blocks) {
+    for (const auto v : b.conn) used[v] = 1;
+    element_at.insert(element_at.end(), b.at.begin(), b.at.end());
+  }
+  if (element_at.empty()) throw io_error::whole(path, "no triangles or quadrangles: nothing to read as a surface");
+  plc<3> out;
+  out.source = path;
+  std::vector<vertex_id> id(m.nodes.size(), no_vertex);
+  std::vector<std::size_t> node_of;  // node index of each point
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    if (used[i]) {
+      id[i] = static_cast<vertex_id>(out.points.size());
+      out.points.push_back(m.nodes[i]);
+      out.point_markers.push_back(0);
+      node_of.push_back(i);
+    }
+  auto tag = [&](vertex_id v) { return std::to_string(m.node_tags[node_of[v]]); };
+  check_distinct(out.points, [&](std::size_t a, std::size_t b) {
+    fail_at(m.node_at[node_of[b]], "duplicate point: node " + tag(static_cast<vertex_id>(b)) + " repeats node " +
+                                       tag(static_cast<vertex_id>(a)));
+  });
+  const auto lines = m.binary ? std::vector<std::size_t>(element_at.size(), 0) : lines_of(data, element_at);
+  std::map<int, std::vector<std::size_t>> facets_of;  // surface entity -> its facets
+  for (const auto& b : m.blocks) {
+    const std::size_t per = b.type == 2 ? 3 : 4;
+    int marker = b.entity;
+    if (auto it = m.physicals.find({2, b.entity}); it != m.physicals.end() && !it->second.empty()) marker = it->second.front();
+    auto& mine = facets_of[b.entity];
+    for (std::size_t k = 0; k + per <= b.conn.size(); k += per) {
+      plc_facet f;
+      f.marker = marker;
+      f.line = lines[out.facets.size()];
+      f.polygons.emplace_back();
+      for (std::size_t j = 0; j < per; ++j) f.polygons.back().push_back(id[b.conn[k + j]]);
+      mine.push_back(out.facets.size());
+      out.facets.push_back(std::move(f));
+    }
+  }
+  auto edge_text = [&](const edge_use& e) { return "edge (nodes " + tag(e.a) + ", " + tag(e.b) + ")"; };
+  if (m.volumes.empty()) {  // like OFF and STL: every edge must be shared
+    std::vector<std::size_t> all(out.facets.size());
+    std::iota(all.begin(), all.end(), 0);
+    const auto e = edge_uses(out, all);
+    for (std::size_t i = 0; i < e.size();) {
+      std::size_t j = i;
+      while (j < e.size() && e[j].a == e[i].a && e[j].b == e[i].b) ++j;
+      if (j - i == 1)
+        fail_at(element_at[e[i].facet], "surface is not closed: " + edge_text(e[i]) +
+                                            " belongs to 1 face; without volume entities every face must bound a cell");
+      i = j;
+    }
+    return out;
+  }
+  // volumes: numbers and names from physical groups; an entity tag must not pose as a group
+  std::map<int, int> physical_of;  // volume -> its first physical tag
+  for (const int v : m.volumes)
+    if (auto it = m.physicals.find({3, v}); it != m.physicals.end() && !it->second.empty()) physical_of[v] = it->second.front();
+  std::vector<plc_volume> list;
+  for (const int v : m.volumes) {
+    plc_volume pv;
+    pv.entity = v;
+    const auto ph = physical_of.find(v);
+    pv.number = ph != physical_of.end() ? ph->second : v;
+    if (ph == physical_of.end())
+      for (const auto& [w, p] : physical_of)
+        if (p == v)
+          fail_at(m.volume_at[v], "volume " + std::to_string(v) + " has no physical group, and its tag " + std::to_string(v) +
+                                      " is the physical group of volume " + std::to_string(w) + ": give it a physical group");
+    if (auto n = m.names.find({3, pv.number}); ph != physical_of.end() && n != m.names.end()) pv.name = n->second;
+    if (pv.name.empty()) pv.name = "region_" + std::to_string(pv.number);
+    std::vector<int> surfaces;
+    for (const int s : m.bounds[v]) surfaces.push_back(std::abs(s));
+    std::sort(surfaces.begin(), surfaces.end());
+    surfaces.erase(std::unique(surfaces.begin(), surfaces.end()), surfaces.end());
+    if (surfaces.empty()) fail_at(m.volume_at[v], "volume " + std::to_string(v) + " has no bounding surfaces");
+    for (const int s : surfaces) {
+      const auto it = facets_of.find(s);
+      if (it == facets_of.end())
+        fail_at(m.volume_at[v], "volume " + std::to_string(v) + " is bounded by surface " + std::to_string(s) +
+                                    ", which has no triangles or quadrangles in the file (save every element: gmsh -save_all)");
+      pv.facets.insert(pv.facets.end(), it->second.begin(), it->second.end());
+    }
+    std::sort(pv.facets.begin(), pv.facets.end());
+    // a closed boundary has every edge in an even number of its faces (2, or 4 where it pinches)
+    const auto e = edge_uses(out, pv.facets);
+    for (std::size_t i = 0; i < e.size();) {
+      std::size_t j = i;
+      while (j < e.size() && e[j].a == e[i].a && e[j].b == e[i].b) ++j;
+      if ((j - i) % 2)
+        fail_at(element_at[e[i].facet], "volume " + std::to_string(v) + " is not closed: " + edge_text(e[i]) + " lies in " +
+                                            std::to_string(j - i) + " of its boundary faces, a closed boundary needs an even number");
+      i = j;
+    }
+    list.push_back(std::move(pv));
+  }
+  if (volumes) *volumes = std::move(list);
+  return out;
 }
 
 template <std::size_t D>

@@ -1,13 +1,18 @@
 #include "gsse/io/poly.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <numeric>
 
+#include "gsse/io/atomic_file.hpp"
+#include "gsse/io/gmsh.hpp"
 #include "gsse/io/sidecar.hpp"
 #include "gsse/io/surface.hpp"
 #include "gsse/io/text_reader.hpp"
 #include "node_block.hpp"
+#include "number_format.hpp"
 
 namespace gsse::io {
 namespace {
@@ -230,7 +235,8 @@ void assign_region_names(plc<D>& p, const std::string& path) {
 template void assign_region_names<2>(plc<2>&, const std::string&);
 template void assign_region_names<3>(plc<3>&, const std::string&);
 
-any_plc read_plc(const std::string& path) {
+any_plc read_plc(const std::string& path, std::vector<plc_volume>* volumes) {
+  if (volumes) volumes->clear();
   const auto ext = extension_of(path);
   if (ext == ".smesh") return read_tetgen_poly(path);
   if (ext == ".poly") {
@@ -239,7 +245,91 @@ any_plc read_plc(const std::string& path) {
   }
   if (ext == ".off") return read_off(path);
   if (ext == ".stl") return read_stl(path);
-  throw io_error::whole(path, "unsupported input format '" + ext + "' (expected .poly, .smesh, .off or .stl)");
+  if (ext == ".msh") return read_msh_plc(path, volumes);
+  throw io_error::whole(path, "unsupported input format '" + ext + "' (expected .poly, .smesh, .off, .stl or .msh)");
+}
+
+namespace {
+
+void put_real(std::string& line, double x) {
+  line += ' ';
+  detail::append_real(line, x);
+}
+
+template <std::size_t D>
+void put_point(std::string& line, const point<D>& p) {
+  for (std::size_t k = 0; k < D; ++k) put_real(line, p[k]);
+}
+
+// Points (from 1, with markers), then `body` (facets or segments), then holes and regions.
+template <std::size_t D>
+void write_poly(const plc<D>& p, const std::string& path, const std::function<void(std::ostream&)>& body) {
+  write_atomically(path, [&](std::ostream& o) {
+    std::string line;
+    o << "# " << (D == 3 ? "TetGen" : "Triangle") << " .poly written by gsse" << (p.source.empty() ? "" : " from " + p.source)
+      << "\n" << p.points.size() << ' ' << D << " 0 1\n";
+    for (std::size_t i = 0; i < p.points.size(); ++i) {
+      line = std::to_string(i + 1);
+      put_point(line, p.points[i]);
+      line += ' ' + std::to_string(i < p.point_markers.size() ? p.point_markers[i] : 0) + '\n';
+      o << line;
+    }
+    body(o);
+    o << p.holes.size() << '\n';
+    for (std::size_t i = 0; i < p.holes.size(); ++i) {
+      line = std::to_string(i + 1);
+      put_point(line, p.holes[i]);
+      o << line << '\n';
+    }
+    o << p.regions.size() << '\n';
+    for (std::size_t i = 0; i < p.regions.size(); ++i) {
+      const auto& g = p.regions[i];
+      line = std::to_string(i + 1);
+      put_point(line, g.at);
+      line += ' ' + std::to_string(g.number);
+      put_real(line, g.max_volume);
+      o << line << '\n';
+    }
+  });
+  if (p.regions.empty()) return;
+  segment_table t;  // names by number, in order of first appearance
+  for (const auto& g : p.regions)
+    if (std::find(t.numbers.begin(), t.numbers.end(), g.number) == t.numbers.end()) {
+      t.numbers.push_back(g.number);
+      t.names.push_back(g.name.empty() ? "region_" + std::to_string(g.number) : g.name);
+    }
+  write_sidecar(base_of(path) + ".json", t);
+}
+
+}  // namespace
+
+void write_tetgen_poly(const plc<3>& p, const std::string& path) {
+  write_poly<3>(p, path, [&](std::ostream& o) {
+    o << p.facets.size() << " 1\n";
+    std::string line;
+    for (const auto& f : p.facets) {
+      o << f.polygons.size() << ' ' << f.holes.size() << ' ' << f.marker << '\n';
+      for (const auto& poly : f.polygons) {
+        line = std::to_string(poly.size());
+        for (const auto v : poly) line += ' ' + std::to_string(std::uint64_t{v} + 1);
+        o << line << '\n';
+      }
+      for (std::size_t h = 0; h < f.holes.size(); ++h) {
+        line = std::to_string(h + 1);
+        put_point(line, f.holes[h]);
+        o << line << '\n';
+      }
+    }
+  });
+}
+
+void write_triangle_poly(const plc<2>& p, const std::string& path) {
+  write_poly<2>(p, path, [&](std::ostream& o) {
+    o << p.edges.size() << " 1\n";
+    for (std::size_t i = 0; i < p.edges.size(); ++i)
+      o << i + 1 << ' ' << std::uint64_t{p.edges[i][0]} + 1 << ' ' << std::uint64_t{p.edges[i][1]} + 1 << ' '
+        << (i < p.edge_markers.size() ? p.edge_markers[i] : 0) << '\n';
+  });
 }
 
 }  // namespace gsse::io

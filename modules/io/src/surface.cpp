@@ -28,8 +28,9 @@ std::string slurp(const std::string& path) {
 
 namespace {
 
-// A single shell is closed when every edge belongs to exactly two facets; anything else is not a
-// surface the mesher can fill.
+// A surface bounds cells when every edge belongs to at least two facets: two for a single shell,
+// more where shells meet (several volumes sharing faces). An edge in one facet is a hole in the
+// surface, which the mesher cannot fill.
 void check_closed(const std::string& file, const plc<3>& p, bool binary) {
   std::map<std::pair<vertex_id, vertex_id>, std::pair<int, std::size_t>> use;  // edge -> (count, facet)
   for (std::size_t f = 0; f < p.facets.size(); ++f) {
@@ -41,10 +42,9 @@ void check_closed(const std::string& file, const plc<3>& p, bool binary) {
     }
   }
   for (const auto& [e, u] : use)
-    if (u.first != 2) {
+    if (u.first < 2) {
       const std::string what = "surface is not closed: edge (" + std::to_string(e.first + 1) + ", " +
-                               std::to_string(e.second + 1) + ") belongs to " + std::to_string(u.first) +
-                               " face(s), a closed surface needs 2";
+                               std::to_string(e.second + 1) + ") belongs to 1 face, a closed surface needs at least 2";
       // binary STL: facet.line is the triangle number; point at the triangle's record
       if (binary) throw io_error::at_byte(file, 84 + 50 * (p.facets[u.second].line - 1), what);
       throw io_error(file, p.facets[u.second].line, what);

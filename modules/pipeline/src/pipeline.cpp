@@ -22,6 +22,7 @@
 #include "gsse/topology/incidence.hpp"
 #include "gsse/traversal/for_each.hpp"
 #include "gsse/traversal/parallel_sort.hpp"
+#include "gsse/verify/verify.hpp"
 
 namespace gsse::pipeline {
 namespace {
@@ -404,123 +405,6 @@ domain<D> mesh_segments<D>::operator()(const conformer::boundary<D>& b, const co
 }
 
 template <std::size_t D>
-std::vector<std::string> verify(const domain<D>& d, const conformer::boundary<D>* b, const conformer::labelling* l) {
-  std::vector<std::string> problems;
-  auto problem = [&](std::string s) {
-    if (problems.size() < 20) problems.push_back(std::move(s));
-  };
-  const auto& p = d.points();
-  const auto grid = front::make_grid(std::span<const point<D>>(p));
-  std::size_t bad_orientation = 0, not_delaunay = 0;
-  for (const auto& s : d.segments()) {
-    segment<D> copy = s;
-    try {
-      copy.finalize();
-    } catch (const std::exception& e) {
-      problem("segment '" + s.name() + "': " + e.what());
-    }
-    for (const auto& c : s.cell_data()) {
-      int o;
-      if constexpr (D == 2)
-        o = geometry::orient2d(p[c[0]], p[c[1]], p[c[2]]);
-      else
-        o = geometry::orient3d(p[c[0]], p[c[1]], p[c[2]], p[c[3]]);
-      if (o <= 0) {
-        ++bad_orientation;
-        continue;
-      }
-      // circumball, padded; exact in-sphere test on every point in its box
-      point<D> cc{};
-      double r = 0;
-      if constexpr (D == 2) {
-        const point2 u = p[c[1]] - p[c[0]], v = p[c[2]] - p[c[0]];
-        const double den = 2 * (u[0] * v[1] - u[1] * v[0]);
-        cc = p[c[0]] + point2{(v[1] * dot(u, u) - u[1] * dot(v, v)) / den, (u[0] * dot(v, v) - v[0] * dot(u, u)) / den};
-      } else {
-        const point3 u = p[c[1]] - p[c[0]], v = p[c[2]] - p[c[0]], w = p[c[3]] - p[c[0]];
-        const double det = dot(u, cross(v, w));
-        cc = p[c[0]] + (1.0 / (2 * det)) * (dot(u, u) * cross(v, w) + dot(v, v) * cross(w, u) + dot(w, w) * cross(u, v));
-      }
-      r = distance(cc, p[c[0]]) * (1 + 1e-6) + 1e-12 * (1 + std::abs(cc[0]));
-      std::array<double, D> lo, hi;
-      for (std::size_t k = 0; k < D; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
-      const bool unreliable = !std::isfinite(r);
-      if (unreliable) lo = grid.lower(), hi = grid.upper();
-      bool violated = false;
-      grid.visit_box(lo, hi, [&](vertex_id y, const auto&) {
-        if (std::find(c.begin(), c.end(), y) != c.end()) return true;
-        int in;
-        if constexpr (D == 2)
-          in = geometry::in_circle(p[c[0]], p[c[1]], p[c[2]], p[y]);
-        else
-          in = geometry::in_sphere(p[c[0]], p[c[1]], p[c[2]], p[c[3]], p[y]);
-        violated = in > 0;
-        return !violated;
-      });
-      not_delaunay += violated;
-    }
-  }
-  if (bad_orientation) problem(std::to_string(bad_orientation) + " cells are degenerate or inverted");
-  if (not_delaunay) problem(std::to_string(not_delaunay) + " cells have a vertex strictly inside their circumsphere");
-  // conformity and labels: segment boundaries are exactly the labelled boundary faces
-  if (b && l) {
-    std::map<std::array<vertex_id, D>, std::size_t> face_of;
-    // domain ids are a compaction of boundary ids: rebuild the map by coordinates
-    std::map<point<D>, vertex_id> id_of;
-    for (vertex_id v = 0; v < p.size(); ++v) id_of[p[v]] = v;
-    std::vector<std::array<vertex_id, D>> faces(b->faces.size());
-    for (std::size_t f = 0; f < b->faces.size(); ++f) {
-      for (std::size_t k = 0; k < D; ++k) {
-        auto it = id_of.find(b->points[b->faces[f][k]]);
-        if (it == id_of.end()) {
-          problem("boundary face " + std::to_string(f + 1) + " has a vertex missing from the mesh");
-          return problems;
-        }
-        faces[f][k] = it->second;
-      }
-      auto key = faces[f];
-      std::sort(key.begin(), key.end());
-      face_of[key] = f;
-    }
-    std::size_t k = 0;
-    std::vector<std::size_t> seg_region(d.segments().size());
-    for (const auto& s : d.segments()) {
-      int r = -1;
-      for (std::size_t i = 0; i < l->regions.size(); ++i)
-        if (l->regions[i].number == s.number() && l->regions[i].name == s.name()) r = static_cast<int>(i);
-      segment<D> copy = s;
-      copy.finalize();
-      std::size_t covered = 0;
-      for (const facet f : boundary_facets(copy)) {
-        auto fv = vertices(copy, f);
-        auto key = fv;
-        std::sort(key.begin(), key.end());
-        auto it = face_of.find(key);
-        if (it == face_of.end()) {
-          problem("segment '" + s.name() + "' has a boundary facet that lies on no input facet");
-          continue;
-        }
-        // the face's positive side is its stored orientation; the facet faces into the segment
-        std::array<vertex_id, D> stored = faces[it->second];
-        const bool same = D == 2 ? stored == fv : front::same_orientation(stored, fv);
-        const int side = same ? 0 : 1;
-        if (l->side[it->second][static_cast<std::size_t>(side)] != r)
-          problem("segment '" + s.name() + "' touches boundary face " + std::to_string(it->second + 1) +
-                  " on the side labelled for another segment");
-        ++covered;
-      }
-      std::size_t expected = 0;
-      for (const auto& sd : l->side) expected += (sd[0] == r) + (sd[1] == r);
-      if (covered != expected)
-        problem("segment '" + s.name() + "' covers " + std::to_string(covered) + " of its " + std::to_string(expected) +
-                " boundary faces");
-      ++k;
-    }
-  }
-  return problems;
-}
-
-template <std::size_t D>
 domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const options& o, report& r) {
   using clock = std::chrono::steady_clock;
   auto t = clock::now();
@@ -556,7 +440,10 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   auto d = mesh_segments<D>{creating ? &fo : nullptr, &r.creation}(b, l, o.threads);
   lap("mesh");
   if (o.verify) {
-    r.problems = verify(d, &b, &l);
+    // against the input PLC itself, not the conformed boundary and labels the mesh was made from
+    verify::options vo;
+    vo.threads = o.threads;
+    r.problems = verify::check(d, p, vo).problems;
     lap("verify");
   }
   return d;
@@ -618,8 +505,6 @@ template struct size_points<2>;
 template struct size_points<3>;
 template struct mesh_segments<2>;
 template struct mesh_segments<3>;
-template std::vector<std::string> verify<2>(const domain<2>&, const conformer::boundary<2>*, const conformer::labelling*);
-template std::vector<std::string> verify<3>(const domain<3>&, const conformer::boundary<3>*, const conformer::labelling*);
 template domain<2> mesh<2>(const plc<2>&, const std::vector<point2>&, const options&, report&);
 template domain<3> mesh<3>(const plc<3>&, const std::vector<point3>&, const options&, report&);
 

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 #include "gsse/io/gmsh.hpp"
 #include "gsse/io/node_ele.hpp"
@@ -57,6 +58,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
       (void)gsse::io::read_plc(put("in.stl", data, size));
     } else if (reader == "msh") {
       (void)gsse::io::read_msh_any(put("in.msh", data, size));
+    } else if (reader == "msh_plc") {  // a surface mesh read as a PLC, with its volumes
+      std::vector<gsse::io::plc_volume> volumes;
+      (void)gsse::io::read_plc(put("in.msh", data, size), &volumes);
     } else if (reader == "sidecar") {
       (void)gsse::io::read_sidecar(put("in.json", data, size));
     } else if (reader == "node_ele") {

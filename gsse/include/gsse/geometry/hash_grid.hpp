@@ -44,6 +44,72 @@ class hash_grid {
   bool visit(const point<D>& lo, const point<D>& hi, F&& f) const {
     return visit_cells(cell_of(lo), cell_of(hi), f);
   }
+  /// The cells the box [lo, hi] meets, by rings about q's cell (ring k: the cells k cells away
+  /// from it in the maximum norm), nearest first; `ring_done()` is called after each ring with
+  /// ids and true from it stops the scan (a search that takes the nearest find reads a few cells
+  /// of a large ball, not all of them). Returns false if stopped.
+  template <class F, class Done>
+  bool visit_rings(const point<D>& q, const point<D>& lo, const point<D>& hi, F&& f, Done&& ring_done) const {
+    const cell a = cell_of(lo), b = cell_of(hi), c0 = cell_of(q);
+    long rings = 0;
+    for (std::size_t k = 0; k < D; ++k) rings = std::max({rings, c0[k] - a[k], b[k] - c0[k]});
+    double count = 1;
+    for (std::size_t k = 0; k < D; ++k) count *= static_cast<double>(b[k] - a[k] + 1);
+    auto probe = [&](const cell& c) {
+      const std::uint64_t key_c = key(c);
+      const std::size_t i = slot(key_c);
+      if (keys_[i] == key_c)
+        for (auto id : buckets_[vals_[i]]) call(f, id);
+    };
+    for (long r = 0; r <= rings; ++r) {
+      if (count > 4.0 * static_cast<double>(buckets_.size()) + 64 && r > 0) {
+        // the rest of a box of more cells than are occupied: every occupied cell beyond ring r-1
+        std::vector<std::pair<std::uint64_t, std::uint32_t>> order;
+        for (std::size_t i = 0; i < keys_.size(); ++i)
+          if (keys_[i] != empty) order.push_back({keys_[i], vals_[i]});
+        std::sort(order.begin(), order.end());
+        for (auto [k, v] : order) {
+          const cell c = unkey(k);
+          long d = 0;
+          bool in = true;
+          for (std::size_t j = 0; j < D; ++j) in = in && a[j] <= c[j] && c[j] <= b[j], d = std::max(d, std::abs(c[j] - c0[j]));
+          if (in && d >= r)
+            for (auto id : buckets_[v]) call(f, id);
+        }
+        ring_done();
+        return true;
+      }
+      // the shell of ring r, clipped to the box: the cells at distance exactly r
+      cell lo_c, hi_c;
+      bool none = false;
+      for (std::size_t k = 0; k < D; ++k) {
+        lo_c[k] = std::max(a[k], c0[k] - r), hi_c[k] = std::min(b[k], c0[k] + r);
+        none = none || lo_c[k] > hi_c[k];
+      }
+      if (!none) {
+        // in the plane of the first two axes: the rows at +-r whole, the columns at +-r between
+        auto rim = [&](cell c, bool whole) {
+          for (c[1] = lo_c[1]; c[1] <= hi_c[1]; ++c[1]) {
+            if (whole || std::abs(c[1] - c0[1]) == r) {
+              for (c[0] = lo_c[0]; c[0] <= hi_c[0]; ++c[0]) probe(c);
+            } else {
+              for (long x : {c0[0] - r, c0[0] + r})
+                if (lo_c[0] <= x && x <= hi_c[0] && (r > 0 || x == c0[0] - r)) c[0] = x, probe(c);
+            }
+          }
+        };
+        cell c = c0;
+        if constexpr (D == 2) {
+          rim(c, false);
+        } else {
+          for (c[2] = lo_c[2]; c[2] <= hi_c[2]; ++c[2]) rim(c, std::abs(c[2] - c0[2]) == r);
+        }
+      }
+      if (ring_done()) return r == rings;
+    }
+    return true;
+  }
+
   /// The same for the cells within `ring` cells of q's cell.
   template <class F>
   bool visit_ring(const point<D>& q, long ring, F&& f) const {
@@ -95,6 +161,14 @@ class hash_grid {
       while (k < D && ++c[k] > b[k]) c[k] = a[k], ++k;
       if (k == D) return true;
     }
+  }
+  static cell unkey(std::uint64_t h) {
+    cell c;
+    for (std::size_t k = D; k-- > 0;) {
+      c[k] = static_cast<long>(h & 0x1FFFFF) - (1l << 20);
+      h >>= 21;
+    }
+    return c;
   }
   /// Cell coordinates packed in 21 bits each: distinct for |coordinate| < 2^20 (beyond, cells may
   /// share a bucket, which only adds candidates), never equal to `empty`.

@@ -5,6 +5,7 @@
 #include <array>
 #include <limits>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -29,7 +30,9 @@ enum class split_action {
   project,        // orthogonal projection of the encroacher onto the element
   rotate_vertex,  // about the shared vertex; distance snapped to a power of two
   rotate_edge,    // about the shared edge axis (3D subfacets); distance snapped to a power of two
-  midpoint        // subsegment midpoint, subfacet circumcentre
+  midpoint,       // subsegment midpoint, subfacet circumcentre
+  shell           // subsegments with one end at a PLC vertex where a small angle meets: on the
+                  // power-of-two shell about that vertex nearest the midpoint
 };
 
 /// One action with its acceptance conditions, in unit coordinates of the element
@@ -69,11 +72,17 @@ std::optional<split_action> split_action_from(std::string_view s);
 /// of two are kept), in world units. Shells are nested for every shared vertex, which is what
 /// makes mutual encroachment of small angles terminate.
 double snap_to_shell(double d);
+/// The split of a subsegment of length l with one end at a small-angle vertex: the largest power
+/// of two not above 2l/3 (so in [l/3, 2l/3]), its distance from that vertex (Ruppert's concentric
+/// shells). Every edge at the vertex is split on the same spheres about it, so the ends of two
+/// subsegments there never encroach each other, whatever the angle between them.
+double shell_radius(double l);
 
 /// The shared PLC entity of an on-incident-* encroachment (3D); empty members when absent.
 struct shared3 {
   std::optional<point3> vertex;
   std::optional<std::array<point3, 2>> edge;
+  std::optional<point3> shell;  // the subsegment's end at which `shell` splits, if any
 };
 
 template <std::size_t D>
@@ -95,16 +104,22 @@ bool accepts(const split_step& s, std::span<const point3> element, const point3&
 /// The candidate of one action before acceptance; nullopt if the action cannot be computed
 /// (missing shared entity, degenerate geometry).
 std::optional<point2> split_candidate(split_action a, std::span<const point2, 2> segment,
-                                      const point2& encroacher, const std::optional<point2>& shared_vertex);
+                                      const point2& encroacher, const std::optional<point2>& shared_vertex,
+                                      const std::optional<point2>& shell = {});
 std::optional<point3> split_candidate(split_action a, std::span<const point3> element,
                                       const point3& encroacher, const shared3& shared);
 
 /// Tries the rule's steps in order; the first accepted candidate. 2D has only subsegments.
+/// `usable`, if given, can reject a candidate the conditions accept (the conformer rejects one that
+/// coincides with an existing point); the next step is then tried.
 std::optional<split_choice<2>> split_point(const split_rule& r, std::span<const point2, 2> segment,
                                            const point2& encroacher,
-                                           const std::optional<point2>& shared_vertex = {});
+                                           const std::optional<point2>& shared_vertex = {},
+                                           const std::optional<point2>& shell = {},
+                                           const std::function<bool(const point2&)>& usable = {});
 /// element: 2 vertices (subsegment) or 3 (subfacet).
 std::optional<split_choice<3>> split_point(const split_rule& r, std::span<const point3> element,
-                                           const point3& encroacher, const shared3& shared = {});
+                                           const point3& encroacher, const shared3& shared = {},
+                                           const std::function<bool(const point3&)>& usable = {});
 
 }  // namespace gsse::rules

@@ -25,6 +25,7 @@ struct options {
   std::size_t max_steiner = 2'000'000;  // cap on inserted boundary points: a runaway becomes an error
   const rules::rule_set* rules = nullptr;  // nullptr: the embedded default conformer rules
   unsigned threads = 1;                    // subfacet encroachment checks run in parallel
+  bool merge_coplanar = true;  // 3D: merge coplanar facets of one marker (see gsse/plc/facet_regions.hpp)
 };
 
 /// Where a vertex lies: on a PLC vertex, on a PLC edge, inside a facet (3D), or free (volume).

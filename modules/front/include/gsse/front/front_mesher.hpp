@@ -56,15 +56,26 @@ struct facet_rewrap {
   std::span<const vertex_id> added;
 };
 
+struct facet_lines;
 /// Triangles of a planar facet of 3D points: edges with the facet on their left in the projection
 /// dropping `axis`; the grid must be built with the same axis. `coplanar`: the points are exactly
 /// coplanar (e.g. all share the dropped coordinate), which allows the faster exact search and,
 /// with `again`, keeps every triangle of the last wrap that no added point disturbs without a
-/// search (the same triangles in the same order as without it).
+/// search (the same triangles in the same order as without it). `lines`: which points lie on
+/// which PLC edge (kernels.hpp): three points of one edge are taken as collinear.
 std::vector<std::array<vertex_id, 3>> wrap_facet(std::span<const point3> pts, int axis, const point_grid<2>& grid,
                                                  const std::vector<std::array<vertex_id, 2>>& boundary,
                                                  const std::string& label, wrap_stats* stats = nullptr,
                                                  std::size_t max_cells = 0, bool coplanar = false,
+                                                 const facet_rewrap* again = nullptr, const facet_lines* lines = nullptr);
+
+/// Triangles of a slanted facet: `ids` (ascending) are its points and `uv` their coordinates in
+/// an orthonormal frame of its plane, right-handed about the side the boundary edges turn around
+/// (the facet lies on their left in the frame). Exact 2D predicates on the frame coordinates
+/// decide everything (see frame_kernel); `lines` and `again` as for wrap_facet.
+std::vector<std::array<vertex_id, 3>> wrap_frame(std::span<const vertex_id> ids, std::span<const point2> uv,
+                                                 const std::vector<std::array<vertex_id, 2>>& boundary,
+                                                 const std::string& label, const facet_lines* lines = nullptr,
                                                  const facet_rewrap* again = nullptr);
 
 }  // namespace gsse::front

@@ -23,6 +23,7 @@
 
 #include "gsse/geometry/exact_ball.hpp"
 #include "gsse/geometry/predicates.hpp"
+#include "gsse/front/point_grid.hpp"
 
 namespace gsse::front {
 
@@ -135,6 +136,23 @@ struct plane_kernel {
   static double estimate(const probe& pr, const coord& q) { return edge_probe::estimate(pr, q); }
 };
 
+/// Points of a facet known to lie on one PLC edge: on a slanted edge its split points are on the
+/// line only up to rounding, and exact orientations would see a zig-zag whose outward corners are
+/// ears of zero area. Three points of one edge are collinear by definition.
+struct facet_lines {
+  std::span<const std::uint32_t> edge_of;      // per point: 1 + the edge whose interior it lies on, or 0
+  std::span<const std::array<vertex_id, 2>> ends;  // per edge: its end vertices
+  bool on(vertex_id v, std::uint32_t e) const {
+    return edge_of[v] == e + 1 || ends[e][0] == v || ends[e][1] == v;
+  }
+  /// True if a, b and c lie on one edge (at least one of them inside it).
+  bool collinear(vertex_id a, vertex_id b, vertex_id c) const {
+    for (vertex_id v : {a, b, c})
+      if (const auto e = edge_of[v]; e != 0) return on(a, e - 1) && on(b, e - 1) && on(c, e - 1);
+    return false;
+  }
+};
+
 /// Triangles of a planar facet of a 3D PLC: 3D points, combinatorics in the projection that drops
 /// `axis`, circles tested exactly as equatorial balls (see in_coplanar_circle_perturbed).
 struct facet_kernel {
@@ -144,12 +162,16 @@ struct facet_kernel {
   std::span<const point3> p;
   int axis = 2;
   bool coplanar = false;  // the points are exactly coplanar (an axis-aligned facet)
+  const facet_lines* lines = nullptr;
 
   /// "beats" is a strict order only for exactly coplanar points; a slanted facet's points are
   /// coplanar up to rounding.
   bool strict() const { return coplanar; }
 
-  int side(const face& f, vertex_id y) const { return geometry::orient_projected(p[f[0]], p[f[1]], p[y], axis); }
+  int side(const face& f, vertex_id y) const {
+    if (lines && lines->collinear(f[0], f[1], y)) return 0;
+    return geometry::orient_projected(p[f[0]], p[f[1]], p[y], axis);
+  }
   bool beats(const face& f, vertex_id x, vertex_id y) const {
     return geometry::in_coplanar_circle_perturbed(p[f[0]], p[f[1]], p[x], p[y], axis) > 0;
   }
@@ -180,6 +202,19 @@ struct facet_kernel {
     return edge_probe::of(geometry::project(p[f[0]], axis), geometry::project(p[f[1]], axis));
   }
   static double estimate(const probe& pr, const coord& q) { return edge_probe::estimate(pr, q); }
+};
+
+/// Triangles of a slanted facet in an orthonormal frame of its plane: the points' frame
+/// coordinates (u, v), rounded once, are the geometry; exact 2D predicates on them make "beats" a
+/// strict order, as on an axis-aligned facet, so every choice is consistent. Works on positions in
+/// its grid (gift_wrapper<..., true>); `ids` maps a position to the point id, for `lines`.
+struct frame_kernel : plane_kernel {
+  const point_grid<2>* grid = nullptr;
+  const facet_lines* lines = nullptr;
+  int side(const face& f, vertex_id y) const {
+    if (lines && lines->collinear(grid->id_at(f[0]), grid->id_at(f[1]), grid->id_at(y))) return 0;
+    return plane_kernel::side(f, y);
+  }
 };
 
 }  // namespace gsse::front

@@ -3,7 +3,7 @@
 // output, so a research code can replace one (e.g. its own sizing) and keep the others:
 //
 //   plc --size_points--> volume points --conform--> boundary --label--> labelled boundary
-//       --mesh_segments (parallel over segments)--> domain --verify--> report
+//       --mesh_segments (parallel over segments)--> domain --verify::check (against the plc)--> report
 #include <array>
 #include <functional>
 #include <string>
@@ -27,7 +27,7 @@ struct options {
   const rules::front_rule_set* front_rules = nullptr;  // fill::rules; nullptr: the embedded default
   double too_far = 0.8;  // fill::rules: create points for faces whose apex ball exceeds too_far*H
   unsigned threads = 1;  // threads for the per-segment meshing
-  bool verify = false;   // run the verifier (with the conformed boundary and labels) at the end
+  bool verify = false;   // run the library verifier (gsse::verify::check against the input PLC) at the end
   conformer::options conform{};
   std::function<void(const std::string&)> progress;  // stage messages, may be empty
 };
@@ -73,14 +73,6 @@ struct mesh_segments {
   front::creation_stats* created = nullptr;  // filled when create is set
   domain<D> operator()(const conformer::boundary<D>& b, const conformer::labelling& l, unsigned threads) const;
 };
-
-/// Library verifier: every cell positively oriented, each facet in at most two cells, every
-/// segment boundary facet is a conformed boundary face with that segment on its inner side
-/// (conforming, correctly labelled), and no vertex strictly inside any cell's circumsphere
-/// (Delaunay). Returns the problems found (empty: valid).
-template <std::size_t D>
-std::vector<std::string> verify(const domain<D>& d, const conformer::boundary<D>* b = nullptr,
-                                const conformer::labelling* l = nullptr);
 
 /// Element quality: radius-edge ratio (circumradius / shortest edge; 0.577 for the equilateral
 /// triangle, 0.612 for the regular tetrahedron) and angles (dihedral in 3D, plane in 2D), degrees.

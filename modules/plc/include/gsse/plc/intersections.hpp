@@ -14,18 +14,17 @@
 // points on no segment that lie on a segment.
 #include <cstddef>
 #include <cstdint>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "gsse/container/plc.hpp"
+#include "gsse/plc/facet_regions.hpp"
 
 namespace gsse::plc_check {
 
-/// The input is not a valid PLC; the message names the file and the facets or segments.
-struct input_error : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+/// The input is not a valid PLC; the message names the file and the facets or segments. The
+/// module's one error type for bad input (facet_regions throws it too).
+using input_error = input::input_error;
 
 /// Facet (3D) or segment (2D) indices into the PLC, 0-based, a <= b. a == b: a problem of one
 /// facet or segment alone (its own polygon edges intersect, or a point on no facet lies on it).

@@ -1,0 +1,167 @@
+#include "gsse/plc/region_points.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "gsse/geometry/predicates.hpp"
+#include "gsse/traversal/for_each.hpp"
+
+namespace gsse::plc_tools {
+namespace {
+
+struct triangle {
+  std::array<point3, 3> v;
+  std::size_t facet;
+};
+
+// Fixed, "irrational" tilts: axis-aligned input rarely puts a tilted ray exactly through an
+// edge or vertex. The first four are small (a ray stays close to the direction asked for).
+constexpr std::array<point3, 8> tilts{{{0.0123, 0.0271, 0.0389},
+                                       {-0.0331, 0.0217, 0.0113},
+                                       {0.0411, -0.0193, 0.0277},
+                                       {0.0157, 0.0353, -0.0241},
+                                       {0.6123, 0.5271, 0.4389},
+                                       {-0.5331, 0.7217, 0.3113},
+                                       {0.3411, -0.6193, 0.7277},
+                                       {0.4157, 0.2353, -0.8241}}};
+
+point3 unit(const point3& d) {
+  const double n = std::sqrt(dot(d, d));
+  return n > 0 ? (1.0 / n) * d : d;
+}
+
+bool collinear(const point3& a, const point3& b, const point3& c) {
+  for (int axis = 0; axis < 3; ++axis)
+    if (geometry::orient_projected(a, b, c, axis) != 0) return false;
+  return true;
+}
+
+enum class crossing { none, through, touch, on };
+
+// Where the segment o-far meets triangle t, exactly: `through` its interior (not at an edge or
+// vertex, far not in its plane), `touch` (edge, vertex, or far in its plane), `on` (o lies on the
+// closed triangle), or `none`. `t_out`: parameter of the crossing along o-far, in doubles (only to
+// rank crossings).
+crossing meet(const triangle& t, const point3& o, const point3& far, double* t_out = nullptr) {
+  const auto& [a, b, c] = t.v;
+  const int so = geometry::orient3d(a, b, c, o), sf = geometry::orient3d(a, b, c, far);
+  if (so == sf && so != 0) return crossing::none;
+  int s[3];
+  for (std::size_t k = 0; k < 3; ++k) s[k] = geometry::orient3d(o, far, t.v[k], t.v[(k + 1) % 3]);
+  const bool inside = (s[0] >= 0 && s[1] >= 0 && s[2] >= 0) || (s[0] <= 0 && s[1] <= 0 && s[2] <= 0);
+  if (!inside) return crossing::none;
+  if (so == 0) return crossing::on;
+  if (sf == 0 || s[0] == 0 || s[1] == 0 || s[2] == 0) return crossing::touch;
+  if (t_out) {
+    const point3 n = cross(b - a, c - a);
+    *t_out = dot(a - o, n) / dot(far - o, n);
+  }
+  return crossing::through;
+}
+
+class locator {
+ public:
+  explicit locator(const plc<3>& p) {
+    for (std::size_t f = 0; f < p.facets.size(); ++f)
+      for (const auto& poly : p.facets[f].polygons)
+        for (std::size_t k = 2; k < poly.size(); ++k) {
+          triangle t{{p.points[poly[0]], p.points[poly[k - 1]], p.points[poly[k]]}, f};
+          if (!collinear(t.v[0], t.v[1], t.v[2])) tris_.push_back(t);
+        }
+    point3 lo = p.points.empty() ? point3{} : p.points[0], hi = lo;
+    for (const auto& q : p.points)
+      for (std::size_t k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+    len_ = 4 * (distance(lo, hi) + 1);
+  }
+
+  std::optional<point3> inside(const std::vector<std::size_t>& facets, std::size_t facet_count) const {
+    std::vector<char> mine(facet_count, 0);
+    for (const auto f : facets) mine[f] = 1;
+    std::vector<std::size_t> own;  // this volume's triangles, largest first
+    std::vector<double> area(tris_.size(), 0);
+    for (std::size_t i = 0; i < tris_.size(); ++i)
+      if (mine[tris_[i].facet]) {
+        const auto& v = tris_[i].v;
+        const point3 n = cross(v[1] - v[0], v[2] - v[0]);
+        area[i] = dot(n, n);
+        own.push_back(i);
+      }
+    std::stable_sort(own.begin(), own.end(), [&](std::size_t a, std::size_t b) { return area[a] > area[b]; });
+    // a volume that cannot take a point from its 64 largest triangles is not worth more tries
+    for (std::size_t k = 0; k < own.size() && k < 64; ++k) {
+      const auto& T = tris_[own[k]];
+      const point3 c = (1.0 / 3) * (T.v[0] + T.v[1] + T.v[2]);
+      const point3 n = unit(cross(T.v[1] - T.v[0], T.v[2] - T.v[0]));
+      for (const double side : {1.0, -1.0}) {
+        const auto m = midpoint_to_first_hit(c, side * n, own[k]);
+        if (m && odd_and_clear(*m, mine)) return m;
+      }
+    }
+    return std::nullopt;
+  }
+
+ private:
+  // Midpoint between c and the first facet a ray from c along `dir` (a unit vector) crosses; the
+  // ray is tilted slightly when it touches an edge or vertex. nullopt: no hit (the unbounded
+  // side), c on another facet, or every direction touched.
+  std::optional<point3> midpoint_to_first_hit(const point3& c, const point3& dir, std::size_t skip) const {
+    for (std::size_t d = 0; d <= 4; ++d) {
+      const point3 u = d == 0 ? dir : unit(dir + tilts[d - 1]);
+      const point3 far = c + len_ * u;
+      double best = std::numeric_limits<double>::infinity();
+      bool retry = false;
+      for (std::size_t i = 0; i < tris_.size() && !retry; ++i) {
+        if (i == skip) continue;
+        double t = 0;
+        switch (meet(tris_[i], c, far, &t)) {
+          case crossing::none: break;
+          case crossing::on: return std::nullopt;
+          case crossing::touch: retry = true; break;
+          case crossing::through: best = std::min(best, t); break;
+        }
+      }
+      if (retry) continue;
+      if (!(best > 0 && best <= 1)) return std::nullopt;
+      return c + (0.5 * best * len_) * u;
+    }
+    return std::nullopt;
+  }
+
+  // Whether m is inside the volume (a ray crosses its boundary an odd number of times) and on no
+  // facet. Rays that touch an edge or vertex of any facet are cast again in another direction.
+  bool odd_and_clear(const point3& m, const std::vector<char>& mine) const {
+    for (const auto& tilt : tilts) {
+      const point3 far = m + len_ * unit(tilt);
+      std::size_t count = 0;
+      bool retry = false;
+      for (std::size_t i = 0; i < tris_.size() && !retry; ++i) switch (meet(tris_[i], m, far)) {
+          case crossing::none: break;
+          case crossing::on: return false;
+          case crossing::touch: retry = true; break;
+          case crossing::through: count += mine[tris_[i].facet] ? 1 : 0; break;
+        }
+      if (!retry) return count % 2 == 1;
+    }
+    return false;
+  }
+
+  std::vector<triangle> tris_;
+  double len_ = 1;
+};
+
+}  // namespace
+
+std::vector<std::optional<point3>> interior_points(const plc<3>& p, const std::vector<std::vector<std::size_t>>& volumes,
+                                                   unsigned threads) {
+  const locator where(p);
+  std::vector<std::optional<point3>> out(volumes.size());
+  std::vector<std::size_t> order(volumes.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  for_each(execution::par(threads), order, [&](std::size_t k) { out[k] = where.inside(volumes[k], p.facets.size()); });
+  return out;
+}
+
+}  // namespace gsse::plc_tools

@@ -1,0 +1,92 @@
+# Shared by corpus_mesh.sh and rotated_structures.sh (sourced): one case = one input meshed twice,
+# plain and with --size, each by gsse-mesh with the library verifier under a timeout and, where
+# ../shared has it, checked by the independent meshcheck against the PLC as gsse-mesh read it
+# (--plc-out). Every run prints one line: case, mode, vertices, tets, Steiner points, wall time,
+# verdict. Needs: $MESH (gsse-mesh), $WORK (scratch folder), $MC (meshcheck or empty), $TIMEOUT.
+
+# meshcheck from ../shared, built once into /tmp; empty (and a note) without ../shared
+find_meshcheck() {  # src
+  local shared=${GSSE_SHARED_DIR:-$1/../shared}
+  MC=""
+  if [ -x "$shared/tools/meshcheck/build.sh" ]; then
+    MC=$(MESHCHECK_BUILD=${MESHCHECK_BUILD:-/tmp/meshcheck-build-gsse} "$shared/tools/meshcheck/build.sh" 2>/dev/null | tail -1)
+    [ -x "$MC" ] || { echo "FAIL: could not build meshcheck"; exit 1; }
+  else
+    echo "note: ../shared absent: gsse-mesh --verify only, no meshcheck"
+  fi
+}
+
+seconds_since() { awk -v a="$1" -v b="$(date +%s.%N)" 'BEGIN{printf "%.1f", b-a}'; }
+
+# Bounding-box diagonal of a .poly's points (TetGen 3D or Triangle 2D), /20
+size_of() {  # poly
+  awk '!/^[[:space:]]*#/ && NF { if (!n) { n = $1; d = $2; next } if (i < n) { i++
+         for (k = 1; k <= d; k++) { x = $(k + 1); if (i == 1 || x < lo[k]) lo[k] = x; if (i == 1 || x > hi[k]) hi[k] = x } } }
+       END { s = 0; for (k = 1; k <= d; k++) s += (hi[k] - lo[k]) ^ 2; printf "%.6g", sqrt(s) / 20 }' "$1"
+}
+
+# Meshes $input once; prints the result line and returns 0 for a pass.
+mesh_once() {  # name input poly mode [gsse-mesh options...]
+  local name=$1 input=$2 poly=$3 mode=$4; shift 4
+  local dir=$WORK/$name/$mode; mkdir -p "$dir"
+  local t0; t0=$(date +%s.%N)
+  timeout -k 5 "$TIMEOUT" "$MESH" "$input" "$@" --verify --quiet -o "$dir/out.node" --stats "$dir/stats.json" \
+    > "$dir/stdout" 2> "$dir/stderr"
+  local rc=$? wall; wall=$(seconds_since "$t0")
+  local verdict v=- t=- s=-
+  case $rc in
+    0) verdict=PASS ;;
+    124) verdict="TIMEOUT (${TIMEOUT} s)" ;;
+    1) verdict="ERROR: $(head -1 "$dir/stderr" | sed "s|^gsse-mesh: error: ||; s|$input|${input##*/}|g" | cut -c1-160)" ;;
+    3) verdict="VERIFY-FAIL: $(head -1 "$dir/stderr" | sed 's/^gsse-mesh: verify: //' | cut -c1-160)" ;;
+    *) verdict="CRASH (exit $rc): $(tail -1 "$dir/stderr" | cut -c1-120)" ;;
+  esac
+  if [ -f "$dir/stats.json" ]; then
+    v=$(grep -o '"points": [0-9]*' "$dir/stats.json" | head -1 | grep -o '[0-9]*$')
+    t=$(grep -o '"cells": [0-9]*' "$dir/stats.json" | awk '{s += $2} END {print s + 0}')
+    s=$(grep -o '"steiner": [0-9]*' "$dir/stats.json" | grep -o '[0-9]*$')
+  fi
+  if [ $rc = 0 ] && [ -n "$MC" ]; then
+    local mc; mc=$("$MC" --inexact-ok "$poly" "$dir/out" 2>&1 | tail -1)
+    [[ "$mc" == *PASS* ]] && verdict="PASS (meshcheck PASS)" || verdict="MESHCHECK-FAIL: $(echo "$mc" | cut -c1-160)"
+  fi
+  printf '%-28s %-14s %8s %9s %7s %7s  %s\n' "$name" "$mode" "$v" "$t" "$s" "$wall" "$verdict"
+  [[ "$verdict" == PASS* ]]
+}
+
+# Reads the input as a PLC (--plc-out) and meshes it plain and at the bounding-box diagonal / 20,
+# or at `size` when given. Writes its lines to $WORK/NAME/result and the number of failed runs to
+# $WORK/NAME/failed.
+mesh_case() {  # name input [size]
+  local name=$1 input=$2 size=${3:-}
+  local dir=$WORK/$name; mkdir -p "$dir"
+  local poly=$dir/plc.poly failed=0
+  if ! timeout -k 5 "$TIMEOUT" "$MESH" "$input" --plc-out "$poly" > "$dir/read.out" 2>&1; then
+    printf '%-28s %-14s %8s %9s %7s %7s  %s\n' "$name" "read" - - - - \
+      "READ-ERROR: $(head -1 "$dir/read.out" | sed "s|^gsse-mesh: error: ||; s|$input|${input##*/}|g" | cut -c1-160)" > "$dir/result"
+    echo 2 > "$dir/failed"
+    return
+  fi
+  [ -n "$size" ] || size=$(size_of "$poly")
+  {
+    mesh_once "$name" "$input" "$poly" plain || failed=$((failed + 1))
+    mesh_once "$name" "$input" "$poly" "size=$size" --size "$size" || failed=$((failed + 1))
+  } > "$dir/result"
+  echo $failed > "$dir/failed"
+}
+
+print_header() {
+  printf '%-28s %-14s %8s %9s %7s %7s  %s\n' case mode vertices tets steiner wall_s verdict
+}
+
+# Prints the results of the cases in the given order and the closing count; returns 1 if any failed.
+report() {  # names...
+  local runs=0 bad=0 n
+  print_header
+  for n in "$@"; do
+    cat "$WORK/$n/result"
+    runs=$((runs + 2)); bad=$((bad + $(cat "$WORK/$n/failed")))
+  done
+  echo "$((runs - bad)) passed, $bad failed"
+  [ $bad = 0 ]
+}
