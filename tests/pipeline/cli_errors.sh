@@ -8,7 +8,7 @@ fail=0; n=0
 expect() {  # file expected-substring [extra args]
   local in=$1 want=$2; shift 2
   local out=$work/out.vtu; rm -f "$out"
-  local msg; msg=$(timeout 60 "$mesh" "$in" -o "$out" --quiet "$@" 2>&1); local rc=$?
+  local msg; msg=$(timeout "${limit:-60}" "$mesh" "$in" -o "$out" --quiet "$@" 2>&1); local rc=$?
   n=$((n + 1))
   if [ $rc -eq 0 ] || [ $rc -ge 124 ]; then echo "FAIL: $in: exit $rc"; fail=1
   elif [[ "$msg" != *"$want"* ]]; then echo "FAIL: $in: message '$msg' lacks '$want'"; fail=1
@@ -56,6 +56,33 @@ expect "$work/open.poly" "not closed"
 cube "$work/outside.poly"; sed -i 's/^1 0.5 0.5 0.5 1 -1$/1 5 5 5 1 -1/' "$work/outside.poly"; expect "$work/outside.poly" "outside the domain"
 cube "$work/trunc.poly"; head -12 "$work/ok.poly" > "$work/trunc.poly"; expect "$work/trunc.poly" "unexpected end of file"
 cube "$work/bend.poly"; sed -i 's/^8 0 1 1$/8 0 1 1.5/' "$work/bend.poly"; expect "$work/bend.poly" "not in the facet's plane"
+# self-intersecting PLCs are found before meshing (the conformer would refine them forever)
+boxes() {  # file, then boxes "x0 y0 z0 x1 y1 z1" (facets as in cube()) or quads "x y z" x 4; one region
+  local f=$1; shift
+  python3 - "$f" "$@" <<'PY'
+import sys
+f, pts, fac = sys.argv[1], [], []
+for arg in sys.argv[2:]:
+    l, b = list(map(float, arg.split())), len(pts)
+    if len(l) == 6:
+        pts += [(l[0], l[1], l[2]), (l[3], l[1], l[2]), (l[3], l[4], l[2]), (l[0], l[4], l[2]),
+                (l[0], l[1], l[5]), (l[3], l[1], l[5]), (l[3], l[4], l[5]), (l[0], l[4], l[5])]
+        fac += [[b + i for i in q] for q in ((1, 2, 3, 4), (5, 6, 7, 8), (1, 2, 6, 5), (2, 3, 7, 6), (3, 4, 8, 7), (4, 1, 5, 8))]
+    else:
+        pts += [tuple(l[i:i + 3]) for i in range(0, 12, 3)]
+        fac.append([b + 1, b + 2, b + 3, b + 4])
+with open(f, "w") as o:
+    o.write(f"{len(pts)} 3 0 0\n" + "".join(f"{i + 1} {x:g} {y:g} {z:g}\n" for i, (x, y, z) in enumerate(pts)))
+    o.write(f"{len(fac)} 0\n" + "".join("1\n4 " + " ".join(map(str, q)) + "\n" for q in fac))
+    o.write("0\n1\n1 0.25 0.25 0.25 1 -1\n")
+PY
+}
+boxes "$work/pierce.poly" "0 0 0 1 1 1" "0.5 0.25 0.5  0.5 0.75 0.5  0.5 0.75 1.5  0.5 0.25 1.5"
+limit=10 expect "$work/pierce.poly" "pierce.poly:27: facet 7 (line 27) intersects facet 2 (line 17): they cross"
+boxes "$work/overlap.poly" "0 0 0 1 1 1" "0.5 0.5 0.5 1.5 1.5 1.5"
+limit=10 expect "$work/overlap.poly" "overlap.poly:35: facet 9 (line 35) intersects facet 2 (line 21): they cross (and 5 more)"
+printf '4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n6 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n5 1 3\n6 2 4\n0\n' > "$work/cross2d.poly"
+limit=10 expect "$work/cross2d.poly" "cross2d.poly: segment 6 (vertices 2-4) intersects segment 5 (vertices 1-3): they cross"
 expect "$work/missing.poly" "cannot open file"
 expect "$work/ok.poly" "unknown option" --frobnicate
 expect "$work/ok.poly" "--size must be positive" --size -1

@@ -17,6 +17,7 @@
 #include "gsse/front/gift_wrap.hpp"
 #include "gsse/geometry/hash_grid.hpp"
 #include "gsse/geometry/predicates.hpp"
+#include "gsse/plc/intersections.hpp"
 #include "gsse/rules/defaults.hpp"
 #include "gsse/topology/incidence.hpp"
 #include "gsse/traversal/for_each.hpp"
@@ -413,6 +414,9 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     t = now;
     if (o.progress) o.progress(std::string(stage) + " done");
   };
+  // a self-intersecting PLC has no conforming mesh: the conformer would refine it forever
+  plc_check::require_no_self_intersections(p);
+  lap("check");
   conformer::options co = o.conform;
   co.size = o.size;
   co.threads = o.threads;
