@@ -1176,9 +1176,10 @@ class state3 : public state<3> {
     try {
       l = label(b, plc_, opt_.threads);
     } catch (const conform_error&) {
-      // an open boundary, a misplaced region point...: the labelling stage reports it; until
-      // then every side counts as meshed
-      meshed_.assign(facets_.size(), {true, true});
+      // an open boundary, a misplaced region point...: the labelling stage will report it and
+      // nothing gets meshed; no side counts as meshed meanwhile (checking flat pairs on every
+      // side would refine the outside of every hull facet for nothing)
+      meshed_.assign(facets_.size(), {false, false});
       return;
     }
     meshed_.assign(facets_.size(), {false, false});

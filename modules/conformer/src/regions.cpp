@@ -161,6 +161,7 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
   const auto& pts = b.points;
   const std::size_t F = b.faces.size();
   union_find shells(2 * F);
+  std::vector<std::array<std::size_t, 3>> free_ends;  // free edges (3D) / ends (2D): (u, v, face)
   // gather faces around each (D-2)-simplex: edges in 3D, vertices in 2D
   if constexpr (D == 3) {
     // faces around each edge: (u, v, face) sorted, so each edge's faces are one run
@@ -186,6 +187,7 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
     constexpr std::size_t piece = 4096;
     const std::size_t nruns = runs.size() - 1, npieces = (nruns + piece - 1) / piece;
     std::vector<std::vector<std::pair<std::size_t, std::size_t>>> unite(npieces);
+    std::vector<std::vector<std::array<std::size_t, 3>>> dangling(npieces);
     std::vector<std::string> error(npieces);
     std::vector<std::size_t> pieces(npieces);
     std::iota(pieces.begin(), pieces.end(), std::size_t{0});
@@ -202,9 +204,11 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
           return u;
         };
         if (fs.size() == 1) {
-          error[k] = p.source + ": the boundary is not closed: edge (" + std::to_string(u + 1) + ", " +
-                     std::to_string(v + 1) + ") bounds only one face";
-          break;
+          // a free edge of an embedded facet: the region goes round it, gluing the two sides
+          // (an open boundary shows as such a side left outside, checked once cells are known)
+          pairs.push_back({2 * static_cast<std::size_t>(fs[0]), 2 * static_cast<std::size_t>(fs[0]) + 1});
+          dangling[k].push_back({u, v, fs[0]});
+          continue;
         }
         const vertex_id w0 = third(fs[0]);
         const int axis = geometry::dominant_axis(pts[u], pts[v], pts[w0]);
@@ -249,6 +253,7 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
     for (std::size_t k = 0; k < npieces; ++k) {
       if (!error[k].empty()) throw conform_error(error[k]);
       for (auto [x, y] : unite[k]) shells.unite(x, y);
+      free_ends.insert(free_ends.end(), dangling[k].begin(), dangling[k].end());
     }
   } else {
     std::map<vertex_id, std::vector<std::uint32_t>> around;
@@ -256,9 +261,11 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
       for (auto v : b.faces[f]) around[v].push_back(f);
     for (auto& [v, fs] : around) {
       auto other = [&](std::uint32_t f) { return b.faces[f][0] == v ? b.faces[f][1] : b.faces[f][0]; };
-      if (fs.size() == 1)
-        throw conform_error(p.source + ": the boundary is not closed: vertex " + std::to_string(v + 1) +
-                            " ends only one segment");
+      if (fs.size() == 1) {  // a free end of an embedded segment (see the 3D case)
+        shells.unite(2 * static_cast<std::size_t>(fs[0]), 2 * static_cast<std::size_t>(fs[0]) + 1);
+        free_ends.push_back({v, v, fs[0]});
+        continue;
+      }
       const vertex_id w0 = other(fs[0]);
       const bool ref_side = lex_less(pts[v], pts[w0]);
       auto cls = [&](std::uint32_t f) {
@@ -363,6 +370,15 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
     const long hit = hit_of(i);
     cells.unite(shells.find(probes[i]), hit < 0 ? unbounded : shells.find(static_cast<std::size_t>(hit)));
   }
+  // A free edge (end) with the unbounded cell round it: the boundary is open there, or a facet
+  // sticks out of the domain; either way part of the input bounds nothing that can be meshed.
+  for (const auto& [u, v, f] : free_ends)
+    if (cells.find(shells.find(2 * f)) == cells.find(unbounded))
+      throw conform_error(p.source + ": " + (D == 3 ? "facet " : "segment ") + std::to_string(b.face_source[f] + 1) +
+                          (D == 3 ? " has a free edge (" + std::to_string(u + 1) + ", " + std::to_string(v + 1) + ")"
+                                  : " has a free end at vertex " + std::to_string(u + 1)) +
+                          " outside every region: the boundary is not closed there, or the " +
+                          (D == 3 ? "facet" : "segment") + " sticks out of the domain");
   // region and hole points
   labelling out;
   std::map<std::size_t, int> cell_region;  // cell root -> region index, or exterior for holes

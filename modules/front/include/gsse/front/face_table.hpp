@@ -1,6 +1,7 @@
 #pragma once
 // Hash table of the open faces of the front, keyed by sorted vertices plus the parity of the
-// stored orientation (16 bytes a triangle, 12 an edge). Linear probing with backward-shift
+// orientation (16 bytes a triangle, 12 an edge): a face and its reverse are different entries, so a
+// constraint with the region on both sides (an embedded facet or edge) is two open faces. Linear probing with backward-shift
 // deletion: closed faces leave the table, so it stays the size of the front instead of growing
 // with the mesh. A lookup that misses returns the empty slot where the face belongs, so closing
 // or opening a face probes once.
@@ -40,14 +41,14 @@ class face_table {
     }
     return f;
   }
-  /// The entry of face f (any orientation) or, if absent, the empty slot where it belongs (valid
+  /// The entry of face f (this orientation) or, if absent, the empty slot where it belongs (valid
   /// until the next insertion or erasure).
   entry* probe(const face& f) {
     std::uint32_t odd;
     const face k = sorted(f, odd);
     for (std::size_t i = hash(k) & mask_;; i = (i + 1) & mask_) {
       entry& e = slots_[i];
-      if (e.empty() || same_key(e.key, k)) return &e;
+      if (e.empty() || (e.odd == odd && same_key(e.key, k))) return &e;
     }
   }
   /// Hints the cache to load the slot where face f would be probed first.
@@ -55,7 +56,7 @@ class face_table {
     std::uint32_t odd;
     __builtin_prefetch(&slots_[hash(sorted(f, odd)) & mask_]);
   }
-  /// The entry of face f (any orientation), or nullptr.
+  /// The entry of face f (this orientation), or nullptr.
   entry* find(const face& f) {
     entry* e = probe(f);
     return e->empty() ? nullptr : e;

@@ -285,15 +285,17 @@ class gift_wrapper {
       for (std::size_t j = 0; j <= D; ++j)
         if (j != i) g[m++] = c[j];
       if ((D - i) % 2 == 1) std::swap(g[0], g[1]);
-      auto* h = table.probe(g);
-      if (!h->empty()) {
-        if (!face_table<D>::same_orientation(*h, g))
-          throw front_error(label + ": cell " + describe_cell(c) + " overlaps the mesh across face " + describe(g));
+      // g faces into the cell: it closes the open face it equals; else its reverse opens,
+      // unless that is open already (the cell lies on the meshed side of it)
+      if (auto* h = table.probe(g); !h->empty()) {
         table.erase(h);
       } else {
         face r = g;
         std::swap(r[0], r[1]);
-        table.fill(h, r);
+        auto* o = table.probe(r);
+        if (!o->empty())
+          throw front_error(label + ": cell " + describe_cell(c) + " overlaps the mesh across face " + describe(g));
+        table.fill(o, r);
         opened(r);
       }
     }
