@@ -471,14 +471,16 @@ class state {
     std::vector<vertex_id> ties;
     std::vector<std::uint32_t> ids(edges_.size());
     std::iota(ids.begin(), ids.end(), 0u);
-    for (bool again = true, first = true; again; first = false) {
+    std::size_t upto = segments_clean_upto_;
+    for (bool again = true; again;) {
       again = false;
       // which edges have an encroached subsegment, checked in parallel: the sequential pass below
-      // skips the others as long as no split has added a point that might encroach them. On the
-      // first pass, a subsegment between points older than the last call's end was clean then:
-      // only a point inserted since can encroach it (closed ball: a new tie counts)
-      const std::size_t upto = first ? segments_clean_upto_ : 0;
+      // skips the others as long as no split has added a point that might encroach them. A
+      // subsegment between points older than `upto` was clean then (at the last call's end, or
+      // at the start of the last pass, which checked every subsegment): only a point inserted
+      // since can encroach it (closed ball: a new tie counts)
       const auto& p = out_.points;
+      const std::size_t pass_start = p.size();
       recent_points<D> recent(p[0], grid_h_);
       for (std::size_t v = upto; upto > 0 && v < p.size(); ++v) recent.add(static_cast<vertex_id>(v), p[v]);
       std::vector<char> encroached(edges_.size(), 0);
@@ -519,6 +521,7 @@ class state {
           again = true;
         }
       }
+      upto = pass_start;
     }
     segments_clean_upto_ = out_.points.size();  // no subsegment is encroached by any point now
     return splits;
@@ -569,6 +572,7 @@ struct facet_state {
   std::vector<vertex_id> interior;                                 // Steiner and embedded points
   std::set<vertex_id> corners;                                     // PLC vertices of the facet
   std::vector<vertex_id> balls;                                    // corners with a protecting ball
+  std::vector<std::array<vertex_id, 4>> not_flat;                  // pairs known not to be flat cells (sorted)
   std::vector<std::array<vertex_id, 3>> triangles;                 // ccw in the projection
   // the triangles by cells of a uniform grid over their projected boxes (locate())
   struct triangle_cells {
@@ -1239,6 +1243,7 @@ class state3 : public state<3> {
         }
       std::sort(half.begin(), half.end());
       std::vector<split_candidate> mine;
+      std::vector<std::array<vertex_id, 4>> fresh;
       for (std::size_t k = 0; k + 1 < half.size(); ++k) {
         const auto& [key, t, w] = half[k];
         const auto& [key2, t2, z] = half[k + 1];
@@ -1249,10 +1254,24 @@ class state3 : public state<3> {
         const auto& T = S.triangles[t];
         const int o = geometry::orient3d(out_.points[T[0]], out_.points[T[1]], out_.points[T[2]], out_.points[z]);
         if (o == 0 || !meshed_[f][o > 0 ? 0 : 1]) continue;
-        if (delaunay_cell(u, v, w, z)) mine.push_back({f, std::max(t, t2), no_vertex, true});
+        // a tetrahedron found not Delaunay stays so (points are only added): checked once
+        std::array<vertex_id, 4> id{u, v, w, z};
+        std::sort(id.begin(), id.end());
+        if (std::binary_search(S.not_flat.begin(), S.not_flat.end(), id)) continue;
+        if (delaunay_cell(u, v, w, z))
+          mine.push_back({f, std::max(t, t2), no_vertex, true});
+        else
+          fresh.push_back(id);
       }
       std::sort(mine.begin(), mine.end(), [](const split_candidate& x, const split_candidate& y) { return x.t < y.t; });
       found[i] = std::move(mine);
+      if (!fresh.empty()) {  // only this task writes facet f's cache
+        auto& cache = facets_[f].not_flat;
+        std::sort(fresh.begin(), fresh.end());
+        std::vector<std::array<vertex_id, 4>> merged;
+        std::merge(cache.begin(), cache.end(), fresh.begin(), fresh.end(), std::back_inserter(merged));
+        cache = std::move(merged);
+      }
     }, [&](std::size_t i) { return static_cast<double>(facets_[fs[i]].triangles.size()); });
     std::vector<split_candidate> all;
     for (auto& v : found) all.insert(all.end(), v.begin(), v.end());

@@ -325,7 +325,7 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
   std::vector<char> outward(2 * F, 0);
   for (std::size_t& s : probes) {
     const std::size_t root = shells.find(s);
-    outward[root] = volume[root] < -1e-12 * scale;
+    outward[root] = !(volume[root] > 1e-12 * scale);  // not enclosing its region: a body, a sheet, an open shell
   }
   // every ray crosses every face: the probes, region points and hole points cast theirs in
   // parallel; the results (or errors) are then used in this order, as if cast one by one
