@@ -201,7 +201,13 @@ int main(int argc, char** argv) {
   try {
     std::vector<gsse::io::plc_volume> volumes;
     auto input = gsse::io::read_plc(a.input, &volumes);
-    if (!volumes.empty()) gsse::plc_tools::add_region_points(std::get<gsse::plc<3>>(input), volumes, a.threads);
+    if (!volumes.empty()) {
+      auto& p3 = std::get<gsse::plc<3>>(input);
+      for (const auto& s : gsse::plc_tools::drop_stray_facets(p3, volumes, a.threads))
+        std::fprintf(stderr, "gsse-mesh: warning: %s:%zu: facet %zu and %zu more connected to it bound no volume and lie outside every volume: left out\n",
+                     a.input.c_str(), s.line, s.facet + 1, s.facets - 1);
+      gsse::plc_tools::add_region_points(p3, volumes, a.threads);
+    }
     if (!a.plc_out.empty()) {
       if (auto* p3 = std::get_if<gsse::plc<3>>(&input))
         gsse::io::write_tetgen_poly(*p3, a.plc_out);

@@ -6,6 +6,7 @@
 # test fails if any run fails.
 # usage: corpus_mesh.sh GSSE_MESH SOURCE_DIR [NAME...]
 #   GSSE_CORPUS_TIMEOUT seconds per run (default 60), GSSE_CORPUS_JOBS cases at once (default 2)
+#   GSSE_CORPUS_WORK keeps the inputs, meshes and logs in that folder (default: a temporary one)
 set -uo pipefail
 MESH=$1; src=$2; shift 2
 here=$src/tests/corpus
@@ -13,7 +14,7 @@ here=$src/tests/corpus
 source "$here/corpus_lib.sh"
 TIMEOUT=${GSSE_CORPUS_TIMEOUT:-60}
 JOBS=${GSSE_CORPUS_JOBS:-2}
-WORK=$(mktemp -d); trap 'rm -rf "$WORK"' EXIT
+if [ -n "${GSSE_CORPUS_WORK:-}" ]; then WORK=$GSSE_CORPUS_WORK; mkdir -p "$WORK"; else WORK=$(mktemp -d); trap 'rm -rf "$WORK"' EXIT; fi
 find_meshcheck "$src"
 names=(); files=()
 while IFS=$'\t' read -r name file _; do

@@ -7,6 +7,7 @@
 # skipped) without ../shared.
 # usage: rotated_structures.sh GSSE_MESH SOURCE_DIR
 #   GSSE_CORPUS_TIMEOUT seconds per run (default 60), GSSE_CORPUS_JOBS cases at once (default 2)
+#   GSSE_CORPUS_WORK keeps the inputs, meshes and logs in that folder (default: a temporary one)
 set -uo pipefail
 MESH=$1; src=$2
 shared=${GSSE_SHARED_DIR:-$src/../shared}
@@ -15,7 +16,7 @@ if [ ! -f "$shared/bench/structures.py" ]; then echo "SKIPPED: ../shared absent 
 source "$src/tests/corpus/corpus_lib.sh"
 TIMEOUT=${GSSE_CORPUS_TIMEOUT:-60}
 JOBS=${GSSE_CORPUS_JOBS:-2}
-WORK=$(mktemp -d); trap 'rm -rf "$WORK"' EXIT
+if [ -n "${GSSE_CORPUS_WORK:-}" ]; then WORK=$GSSE_CORPUS_WORK; mkdir -p "$WORK"; else WORK=$(mktemp -d); trap 'rm -rf "$WORK"' EXIT; fi
 find_meshcheck "$src"
 [ -n "$MC" ] || { echo "FAIL: meshcheck missing in $shared"; exit 1; }
 PY=/usr/bin/python3; [ -x $PY ] || PY=python3

@@ -571,6 +571,7 @@ struct facet_state {
   std::vector<std::pair<std::uint32_t, bool>> sides;               // (edge, forward): facet on the left
   std::vector<vertex_id> interior;                                 // Steiner and embedded points
   std::set<vertex_id> corners;                                     // PLC vertices of the facet
+  std::vector<std::array<vertex_id, 2>> seams;                     // merged facets' shared edges (no constraint)
   std::vector<vertex_id> balls;                                    // corners with a protecting ball
   std::vector<std::array<vertex_id, 4>> not_flat;                  // pairs known not to be flat cells (sorted)
   std::vector<std::array<vertex_id, 3>> triangles;                 // ccw in the projection
@@ -780,6 +781,18 @@ class state3 : public state<3> {
     for (vertex_id v : R.points) {
       S.corners.insert(v);
       S.interior.push_back(v);
+    }
+    if (R.members.size() > 1) {  // the edges between merged facets: no constraint, but seams (plan_split)
+      std::set<std::array<vertex_id, 2>> kept, seams;
+      for (const auto& [a, b] : R.edges) kept.insert({std::min(a, b), std::max(a, b)});
+      for (auto m : R.members)
+        for (const auto& loop : plc_.facets[m].polygons)
+          for (std::size_t i = 0; loop.size() >= 3 && i < loop.size(); ++i) {
+            const vertex_id a = loop[i], b = loop[(i + 1) % loop.size()];
+            const std::array<vertex_id, 2> e{std::min(a, b), std::max(a, b)};
+            if (!kept.count(e)) seams.insert(e);
+          }
+      S.seams.assign(seams.begin(), seams.end());
     }
     for (std::size_t k = 0; k < 3; ++k) {
       S.constant[k] = true;
@@ -1326,16 +1339,38 @@ class state3 : public state<3> {
     if (locate(c.f, s.at, c.t) < 0) s.at = out_of_balls(c.f, (1.0 / 3) * (elem[0] + elem[1] + elem[2]));  // outside: centroid
     if (!S.constant[static_cast<std::size_t>(S.axis)]) {
       // onto the slanted facet's plane (no drift), off the exact construction by a pseudo-random
-      // 1e-10 of the subfacet in the plane (detail::jitter)
+      // 1e-10 of the subfacet in the plane (detail::jitter); a point on a seam between merged
+      // facets (a projection or a circumcentre landing on a diagonal of a triangulated face) stays
+      // on it, moved along it only: off it, the faces about it would leave one input facet for
+      // its neighbour by a sliver, and a thin facet's coverage by more than rounding
       const auto j = detail::jitter(s.at);
       const double size = std::sqrt(std::max({squared_distance(elem[0], elem[1]), squared_distance(elem[1], elem[2]),
                                               squared_distance(elem[2], elem[0])}));
-      s.at = s.at + (1e-10 * size) * (j[0] * S.e1 + j[1] * S.e2);
-      s.at = s.at - dot(s.at - S.centre, S.unit) * S.unit;
+      if (const auto seam = on_seam(S, s.at, 1e-9 * size)) {
+        const point3 &a = p[(*seam)[0]], &b = p[(*seam)[1]], d = b - a;
+        const double t = dot(s.at - a, d) / dot(d, d), len = std::sqrt(dot(d, d));
+        s.at = a + (t + 1e-10 * size * j[0] / len) * d;
+      } else {
+        s.at = s.at + (1e-10 * size) * (j[0] * S.e1 + j[1] * S.e2);
+        s.at = s.at - dot(s.at - S.centre, S.unit) * S.unit;
+      }
     }
     for (std::size_t k = 0; k < 3; ++k)  // exact on axis-aligned facets
       if (S.constant[k]) s.at[k] = S.constant_value[k];
     return s;
+  }
+  /// The seam of facet S (an edge between two of its merged input facets) within `tol` of q,
+  /// strictly between its ends, if any.
+  std::optional<std::array<vertex_id, 2>> on_seam(const facet_state& S, const point3& q, double tol) const {
+    const auto& p = out_.points;
+    for (const auto& e : S.seams) {
+      const point3 &a = p[e[0]], d = p[e[1]] - a;
+      const double dd = dot(d, d), t = dot(q - a, d) / dd;
+      if (!(t > 0 && t < 1)) continue;
+      const point3 r = q - a - t * d;
+      if (dot(r, r) <= tol * tol) return e;
+    }
+    return std::nullopt;
   }
   /// A split point encroaching a subsegment of the facet splits that subsegment instead.
   void plan_subsegment(std::uint32_t f, split_plan& s) const {

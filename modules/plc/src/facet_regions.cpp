@@ -1,6 +1,7 @@
 #include "gsse/plc/facet_regions.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -13,6 +14,12 @@ namespace {
 
 using geometry::orient2d;
 using geometry::project;
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
 
 std::string facet_where(const plc<3>& p, std::size_t f) {
   return p.source + ":" + std::to_string(p.facets[f].line) + ": facet " + std::to_string(f + 1);
@@ -99,8 +106,7 @@ single one_facet(const plc<3>& p, std::size_t f, double tol) {
       const double off = std::abs(out.pl.offset(p.points[v]));
       if (!(off <= tol))
         throw input_error(where + ": vertex " + std::to_string(v + 1) + " is not in the facet's plane: " +
-                          std::to_string(off) + " from it, more than the tolerance " + std::to_string(tol) +
-                          " (1e-12 of the model size)");
+                          number(off) + " from it, more than the tolerance " + number(tol) + " (1e-12 of the model size)");
     }
   std::sort(out.vertices.begin(), out.vertices.end());
   out.vertices.erase(std::unique(out.vertices.begin(), out.vertices.end()), out.vertices.end());

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 
 #include "gsse/geometry/predicates.hpp"
@@ -150,7 +151,101 @@ class locator {
 
   std::vector<triangle> tris_;
   double len_ = 1;
+
+ public:
+  /// The volume strictly holding m (odd crossings of its boundary), -1 for none, -2 when m lies on
+  /// a facet of a volume or every direction touched an edge or vertex.
+  long holder(const point3& m, const std::vector<std::vector<std::uint32_t>>& of, std::size_t volumes) const {
+    std::vector<std::size_t> count(volumes);
+    for (const auto& tilt : tilts) {
+      const point3 far = m + len_ * unit(tilt);
+      std::fill(count.begin(), count.end(), 0);
+      bool retry = false;
+      for (std::size_t i = 0; i < tris_.size() && !retry; ++i) {
+        if (of[tris_[i].facet].empty()) continue;
+        switch (meet(tris_[i], m, far)) {
+          case crossing::none: break;
+          case crossing::on: return -2;
+          case crossing::touch: retry = true; break;
+          case crossing::through:
+            for (auto v : of[tris_[i].facet]) ++count[v];
+            break;
+        }
+      }
+      if (retry) continue;
+      for (std::size_t v = 0; v < volumes; ++v)
+        if (count[v] % 2 == 1) return static_cast<long>(v);
+      return -1;
+    }
+    return -2;
+  }
+  /// Points just off facet f on either side (the midpoints to the first facet a ray along its
+  /// normal crosses), for the cells on its two sides.
+  std::vector<point3> beside(std::size_t f) const {
+    std::vector<point3> out;
+    for (std::size_t i = 0; i < tris_.size(); ++i) {
+      if (tris_[i].facet != f) continue;
+      const auto& T = tris_[i];
+      const point3 c = (1.0 / 3) * (T.v[0] + T.v[1] + T.v[2]);
+      const point3 n = unit(cross(T.v[1] - T.v[0], T.v[2] - T.v[0]));
+      for (const double side : {1.0, -1.0})
+        if (const auto m = midpoint_to_first_hit(c, side * n, i)) out.push_back(*m);
+      break;
+    }
+    return out;
+  }
+
+  /// Whether m is strictly outside every volume (facets of no volume are ignored); a point on a
+  /// volume facet or undecided counts as not outside.
+  bool outside_all(const point3& m, const std::vector<std::vector<std::uint32_t>>& of, std::size_t volumes) const {
+    return holder(m, of, volumes) == -1;
+  }
 };
+
+// The facets bounding no volume (of[f] empty), in pieces connected through shared edges, not
+// across an edge of a volume's boundary: a surface crossing a wall is cut there into a part
+// inside (embedded, kept) and a part outside. Each piece's facets ascending, pieces by first facet.
+std::vector<std::vector<std::size_t>> loose_pieces(const plc<3>& p, const std::vector<std::vector<std::uint32_t>>& of) {
+  const std::size_t n = p.facets.size();
+  std::vector<std::size_t> parent(n);
+  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  auto root = [&](std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::map<std::pair<vertex_id, vertex_id>, std::size_t> first;
+  for (std::size_t f = 0; f < n; ++f) {
+    if (of[f].empty()) continue;
+    for (const auto& poly : p.facets[f].polygons)
+      for (std::size_t k = 0; poly.size() >= 2 && k < poly.size(); ++k) {
+        const vertex_id a = poly[k], b = poly[(k + 1) % poly.size()];
+        first.try_emplace({std::min(a, b), std::max(a, b)}, n);
+      }
+  }
+  for (std::size_t f = 0; f < n; ++f) {
+    if (!of[f].empty()) continue;
+    for (const auto& poly : p.facets[f].polygons)
+      for (std::size_t k = 0; poly.size() >= 2 && k < poly.size(); ++k) {
+        const vertex_id a = poly[k], b = poly[(k + 1) % poly.size()];
+        const auto [it, fresh] = first.try_emplace({std::min(a, b), std::max(a, b)}, f);
+        if (!fresh && it->second < n) parent[root(f)] = root(it->second);
+      }
+  }
+  std::map<std::size_t, std::vector<std::size_t>> pieces;  // root -> facets, ascending
+  for (std::size_t f = 0; f < n; ++f)
+    if (of[f].empty()) pieces[root(f)].push_back(f);
+  std::vector<std::vector<std::size_t>> list;
+  for (auto& [r, fs] : pieces) list.push_back(std::move(fs));
+  std::sort(list.begin(), list.end());
+  return list;
+}
+
+std::vector<std::vector<std::uint32_t>> volumes_of(const plc<3>& p, const std::vector<std::vector<std::size_t>>& volumes) {
+  std::vector<std::vector<std::uint32_t>> of(p.facets.size());
+  for (std::size_t v = 0; v < volumes.size(); ++v)
+    for (auto f : volumes[v]) of[f].push_back(static_cast<std::uint32_t>(v));
+  return of;
+}
 
 }  // namespace
 
@@ -162,6 +257,88 @@ std::vector<std::optional<point3>> interior_points(const plc<3>& p, const std::v
   std::iota(order.begin(), order.end(), std::size_t{0});
   for_each(execution::par(threads), order, [&](std::size_t k) { out[k] = where.inside(volumes[k], p.facets.size()); });
   return out;
+}
+
+std::vector<std::pair<std::size_t, point3>> embedded_region_points(const plc<3>& p,
+                                                                   const std::vector<std::vector<std::size_t>>& volumes,
+                                                                   unsigned threads) {
+  const auto of = volumes_of(p, volumes);
+  std::vector<std::size_t> loose;  // the first facet of each loose piece
+  for (const auto& piece : loose_pieces(p, of)) loose.push_back(piece.front());
+  if (loose.empty()) return {};
+  const locator where(p);
+  std::vector<std::vector<std::pair<std::size_t, point3>>> found(loose.size());
+  std::vector<std::size_t> order(loose.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  for_each(execution::par(threads), order, [&](std::size_t k) {
+    for (const auto& m : where.beside(loose[k]))
+      if (const long v = where.holder(m, of, volumes.size()); v >= 0) found[k].emplace_back(static_cast<std::size_t>(v), m);
+  });
+  std::vector<std::pair<std::size_t, point3>> out;
+  for (auto& l : found) out.insert(out.end(), l.begin(), l.end());
+  return out;
+}
+
+std::vector<stray_piece> drop_stray_facets(plc<3>& p, std::vector<std::vector<std::size_t>>& volumes, unsigned threads) {
+  const std::size_t n = p.facets.size();
+  const auto of = volumes_of(p, volumes);
+  auto list = loose_pieces(p, of);
+  if (list.empty()) return {};
+  // a piece is stray if the centroids of its first, middle and last facets' first triangles are
+  // all strictly outside every volume; a piece partly inside stays (the mesher names its edge)
+  const locator where(p);
+  std::vector<char> stray(list.size(), 0);
+  std::vector<std::size_t> order(list.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  for_each(execution::par(threads), order, [&](std::size_t k) {
+    const auto& fs = list[k];
+    bool out = true;
+    for (const std::size_t f : {fs.front(), fs[fs.size() / 2], fs.back()}) {
+      const auto& poly = p.facets[f].polygons.front();
+      if (poly.size() < 3) continue;
+      const point3 c = (1.0 / 3) * (p.points[poly[0]] + p.points[poly[1]] + p.points[poly[2]]);
+      out = out && where.outside_all(c, of, volumes.size());
+      if (!out) break;
+    }
+    stray[k] = out;
+  });
+  std::vector<stray_piece> dropped;
+  std::vector<char> drop(n, 0);
+  for (std::size_t k = 0; k < list.size(); ++k)
+    if (stray[k]) {
+      dropped.push_back({list[k].front(), list[k].size()});
+      for (auto f : list[k]) drop[f] = 1;
+    }
+  if (dropped.empty()) return dropped;
+  for (auto& d : dropped) d.line = p.facets[d.facet].line;
+  // keep the other facets and the points they use, renumbered in order
+  std::vector<std::size_t> new_facet(n, 0);
+  std::vector<plc_facet> facets;
+  std::vector<vertex_id> new_point(p.points.size(), no_vertex);
+  for (std::size_t f = 0; f < n; ++f) {
+    if (drop[f]) continue;
+    new_facet[f] = facets.size();
+    facets.push_back(std::move(p.facets[f]));
+    for (const auto& poly : facets.back().polygons)
+      for (auto v : poly) new_point[v] = 0;
+  }
+  std::vector<point3> points;
+  std::vector<int> markers;
+  for (std::size_t v = 0; v < p.points.size(); ++v)
+    if (new_point[v] == 0) {
+      new_point[v] = static_cast<vertex_id>(points.size());
+      points.push_back(p.points[v]);
+      if (v < p.point_markers.size()) markers.push_back(p.point_markers[v]);
+    }
+  for (auto& f : facets)
+    for (auto& poly : f.polygons)
+      for (auto& v : poly) v = new_point[v];
+  p.facets = std::move(facets);
+  p.points = std::move(points);
+  if (!p.point_markers.empty()) p.point_markers = std::move(markers);
+  for (auto& vol : volumes)
+    for (auto& f : vol) f = new_facet[f];
+  return dropped;
 }
 
 }  // namespace gsse::plc_tools

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numeric>
 
 #include "facets.hpp"
@@ -178,9 +179,26 @@ struct hit {
   bool exact;
 };
 
+/// What rounding alone can make of a face's measure: its vertices are doubles, so one that should
+/// lie on a slanted edge or line is off it by up to an ulp of its coordinates, and a clipped share
+/// is off by that much times the face's perimeter (a thin face far from the origin: a sliver of
+/// 1e-17 may be 1e-8 of its area). The relative tolerance alone would call such a face off its
+/// facet; this is added to it (8 ulps of the largest coordinate along the perimeter).
+template <std::size_t D>
+double rounding_slack(const std::vector<point<D>>& p, const std::array<vertex_id, D>& v) {
+  double mag = 0, perimeter = 0;
+  for (std::size_t i = 0; i < D; ++i) {
+    for (std::size_t k = 0; k < D; ++k) mag = std::max(mag, std::abs(p[v[i]][k]));
+    if (D == 3 || i == 0) perimeter += distance(p[v[i]], p[v[(i + 1) % D]]);
+  }
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  return D == 3 ? 8 * eps * mag * perimeter : 8 * eps * mag;
+}
+
 template <std::size_t D>
 placement place(const facet_set<D>& fs, const vertex_facets& vf, const std::vector<point<D>>& p,
                 const std::array<vertex_id, D>& v, double size, std::vector<hit>& hits, std::vector<std::uint32_t>& scratch) {
+  const double slack = rel_tol * size + rounding_slack(p, v);
   hits.clear();
   for (auto x : v)
     if (!vf.any(x)) return placement::off;
@@ -225,12 +243,12 @@ placement place(const facet_set<D>& fs, const vertex_facets& vf, const std::vect
       exact = exact && on == 1;
     }
     // a share of the order of rounding is no part of the face (it would "span" a neighbour facet)
-    if (const double s = fs.share(f, corners); s > rel_tol * size) {
+    if (const double s = fs.share(f, corners); s > slack) {
       hits.push_back({f, s, exact});
       covered += s;
     }
   });
-  if (hits.empty() || std::abs(covered - size) > rel_tol * size) {
+  if (hits.empty() || std::abs(covered - size) > slack) {
     hits.clear();
     return placement::off;
   }
@@ -502,6 +520,7 @@ report check(const domain<D>& d, const plc<D>& input, const options& o) {
 
   struct coverage {
     double all = 0, hull_plus = 0, hull_minus = 0, hull_flux = 0;
+    double slack = 0;  // the rounding slack of the faces on it (rounding_slack)
   };
   std::vector<coverage> cov(fs.size());
   union_find uf(nc);
@@ -556,9 +575,11 @@ report check(const domain<D>& d, const plc<D>& input, const options& o) {
     const double size = std::sqrt(dot(sv, sv)), flux = dot(centre - origin, sv) / D;
     const placement pl = place(fs, vf, p, v, size, hits, scratch);
     const bool on = pl != placement::off;
+    const double face_slack = hits.empty() ? 0 : rounding_slack(p, v);
     for (const auto& h : hits) {
       auto& cv = cov[h.facet];
       cv.all += h.share;
+      cv.slack += face_slack;
       if (hull) {
         (dot(sv, fs[h.facet].normal) > 0 ? cv.hull_plus : cv.hull_minus) += h.share;
         cv.hull_flux += size > 0 ? flux * h.share / size : 0;
@@ -596,7 +617,7 @@ report check(const domain<D>& d, const plc<D>& input, const options& o) {
   for (std::uint32_t f = 0; f < fs.size(); ++f) {
     if (!fs[f].usable) continue;
     const double area = fs[f].size, got = cov[f].all;
-    if (std::abs(got - area) <= rel_tol * area) continue;
+    if (std::abs(got - area) <= rel_tol * area + cov[f].slack) continue;
     if (got == 0 && !input.holes.empty()) {  // without hole points every facet bounds a meshed region
       if (const auto x = fs.sample(f)) {
         bare.push_back(f);
@@ -635,7 +656,7 @@ report check(const domain<D>& d, const plc<D>& input, const options& o) {
     const auto& cv = cov[f];
     const double hull = cv.hull_plus + cv.hull_minus;
     if (hull == 0) continue;
-    if ((cv.hull_plus == 0 || cv.hull_minus == 0) && std::abs(hull - fs[f].size) <= rel_tol * fs[f].size)
+    if ((cv.hull_plus == 0 || cv.hull_minus == 0) && std::abs(hull - fs[f].size) <= rel_tol * fs[f].size + cv.slack)
       plc_volume += (cv.hull_plus > 0 ? 1 : -1) * dot(fs[f].corner[0] - origin, fs[f].normal) * fs[f].size / D;
     else
       plc_volume += cv.hull_flux;

@@ -1,0 +1,89 @@
+#!/usr/bin/env python3
+"""Copies ../shared's meshcheck source to OUT and applies two fixes for floating-point artefacts
+it shows on slanted facets (see docs/benchmarks.md, "meshcheck on slanted facets"):
+
+1. A face whose share of a coplanar facet is a rounding sliver (at most meshcheck's own kRelTol,
+   1e-9, of the face) is not counted as lying on that facet. Without this a face inside one facet
+   with a vertex rounded 1e-17 across the common edge with a coplanar facet of another marker (a
+   split point of that edge: no double point lies exactly on a slanted edge) is reported as
+   "spanning coplanar facets of different markers", while the same sliver beyond an edge with no
+   coplanar neighbour is accepted as "rounded". Coverage is unchanged: the sliver still counts
+   towards the face's covered total.
+2. clippedArea clips in coordinates relative to the face's first vertex instead of absolute ones:
+   a face of area 1e-7 at coordinates 300 lost its area to cancellation.
+3. The tolerance on a face's shares (and on a facet's coverage, summed over its faces) adds what
+   rounding of the vertices alone can do: 8 ulps of the face's largest coordinate times its
+   perimeter. A thin face (1e-3 by 2e-5) at coordinates 280 whose vertex is rounded one ulp off a
+   slanted edge leaves its facet by a sliver of 2e-9 of its area, over the relative 1e-9 alone.
+   The library verifier uses the same slack (modules/verify, rounding_slack).
+
+Every fix asserts the text it replaces, so a changed meshcheck stops this script instead of being
+patched blindly. usage: meshcheck_fixed.py SHARED_MESHCHECK_DIR OUT_DIR
+"""
+import shutil
+import sys
+
+src, out = sys.argv[1], sys.argv[2]
+shutil.rmtree(out, ignore_errors=True)
+shutil.copytree(src, out, ignore=shutil.ignore_patterns("tests"))
+path = out + "/meshcheck.cpp"
+text = open(path).read()
+fixes = [
+    ("    if (share > 0) hits.push_back({fi, share, exact, f.marker});",
+     "    if (share > kRelTol * size) hits.push_back({fi, share, exact, f.marker});  // gsse fix 1"),
+    ("""  Poly tri;
+  for (int i = 0; i < 3; ++i) {
+    P2 q = project(t[i], f.axis);
+    tri.push_back({q.x(), q.y()});
+  }""",
+     """  Poly tri;
+  const P2 o = project(t[0], f.axis);  // gsse fix 2: relative to the face's first vertex
+  for (int i = 0; i < 3; ++i) {
+    P2 q = project(t[i], f.axis);
+    tri.push_back({q.x() - o.x(), q.y() - o.y()});
+  }"""),
+    ("      const P2 &a = fh->vertex(i)->point(), &b = fh->vertex((i + 1) % 3)->point();",
+     """      const P2 a(fh->vertex(i)->point().x() - o.x(), fh->vertex(i)->point().y() - o.y());  // gsse fix 2
+      const P2 b(fh->vertex((i + 1) % 3)->point().x() - o.x(), fh->vertex((i + 1) % 3)->point().y() - o.y());"""),
+]
+slack = """// gsse fix 3: what rounding of the vertices alone can do to a face's shares
+static double roundingSlack(const Mesh& m, const uint32_t* v) {
+  double mag = 0, perimeter = 0;
+  for (int t = 0; t < m.dim; ++t) {
+    for (int a = 0; a < 3; ++a) mag = std::max(mag, std::fabs(m.pts[v[t]][a]));
+    if (m.dim == 3 || t == 0) perimeter += norm(sub(m.pts[v[t]], m.pts[v[(t + 1) % m.dim]]));
+  }
+  const double eps = std::numeric_limits<double>::epsilon();
+  return m.dim == 3 ? 8 * eps * mag * perimeter : 8 * eps * mag;
+}
+
+Placement placeFace("""
+fixes += [
+    ("""Placement placeFace(""", slack),
+    ("""    if (share > kRelTol * size) hits.push_back({fi, share, exact, f.marker});  // gsse fix 1""",
+     """    if (share > kRelTol * size + roundingSlack(m, v)) hits.push_back({fi, share, exact, f.marker});  // gsse fix 1, 3"""),
+    ("""  if (!hits.empty() && std::fabs(covered - size) <= kRelTol * size)""",
+     """  if (!hits.empty() && std::fabs(covered - size) <= kRelTol * size + roundingSlack(m, v))  // gsse fix 3"""),
+    ("""  double hullFlux = 0;   // divergence-theorem volume term of those hull faces
+};""",
+     """  double hullFlux = 0;   // divergence-theorem volume term of those hull faces
+  double slack = 0;      // gsse fix 3: rounding slack of the faces on it, relative to its size
+};"""),
+    ("""      cv.all += h.share;
+      if (bounding) cv.bounding += h.share;""",
+     """      cv.all += h.share;
+      cv.slack += roundingSlack(m, v) / plc.facets[h.facet].size;  // gsse fix 3
+      if (bounding) cv.bounding += h.share;"""),
+    ("""    if (err > kRelTol) {
+      overcovered""", """    if (err > kRelTol + cv.slack) {  // gsse fix 3
+      overcovered"""),
+    ("""      if (std::fabs(err) <= kRelTol) ++boundingCovered;""",
+     """      if (std::fabs(err) <= kRelTol + cv.slack) ++boundingCovered;  // gsse fix 3"""),
+    ("""      if (std::fabs(err) <= kRelTol) ++internalRespected;""",
+     """      if (std::fabs(err) <= kRelTol + cv.slack) ++internalRespected;  // gsse fix 3"""),
+]
+for old, new in fixes:
+    if text.count(old) != 1:
+        sys.exit("meshcheck_fixed.py: meshcheck.cpp changed, cannot apply: " + old.splitlines()[0].strip())
+    text = text.replace(old, new)
+open(path, "w").write(text)
