@@ -1,14 +1,14 @@
 #!/usr/bin/env python3
-"""Copies ../shared's meshcheck source to OUT and applies two fixes for floating-point artefacts
+"""Copies ../shared's meshcheck source to OUT and applies three fixes for floating-point artefacts
 it shows on slanted facets (see docs/benchmarks.md, "meshcheck on slanted facets"):
 
-1. A face whose share of a coplanar facet is a rounding sliver (at most meshcheck's own kRelTol,
-   1e-9, of the face) is not counted as lying on that facet. Without this a face inside one facet
+1. A face whose share of a coplanar facet is a rounding sliver (within 1e-9 of the face plus fix
+   3's slack) does not make the face span that facet: the sliver still counts towards the facet's
+   coverage, but the face is "inside one facet but for a sliver". Without this a face inside one facet
    with a vertex rounded 1e-17 across the common edge with a coplanar facet of another marker (a
    split point of that edge: no double point lies exactly on a slanted edge) is reported as
    "spanning coplanar facets of different markers", while the same sliver beyond an edge with no
-   coplanar neighbour is accepted as "rounded". Coverage is unchanged: the sliver still counts
-   towards the face's covered total.
+   coplanar neighbour is accepted as "rounded".
 2. clippedArea clips in coordinates relative to the face's first vertex instead of absolute ones:
    a face of area 1e-7 at coordinates 300 lost its area to cancellation.
 3. The tolerance on a face's shares (and on a facet's coverage, summed over its faces) adds what
@@ -18,19 +18,29 @@ it shows on slanted facets (see docs/benchmarks.md, "meshcheck on slanted facets
    The library verifier uses the same slack (modules/verify, rounding_slack).
 
 Every fix asserts the text it replaces, so a changed meshcheck stops this script instead of being
-patched blindly. usage: meshcheck_fixed.py SHARED_MESHCHECK_DIR OUT_DIR
+patched blindly. Files already in OUT with the same content are not rewritten (no rebuild).
+usage: meshcheck_fixed.py SHARED_MESHCHECK_DIR OUT_DIR
 """
-import shutil
+import os
 import sys
 
 src, out = sys.argv[1], sys.argv[2]
-shutil.rmtree(out, ignore_errors=True)
-shutil.copytree(src, out, ignore=shutil.ignore_patterns("tests"))
-path = out + "/meshcheck.cpp"
-text = open(path).read()
+os.makedirs(out, exist_ok=True)
+
+
+def put(name, data):
+    path = os.path.join(out, name)
+    if os.path.exists(path) and open(path, "rb").read() == data:
+        return
+    with open(path, "wb") as f:
+        f.write(data)
+    os.chmod(path, 0o755 if name.endswith(".sh") else 0o644)
+
+
+for name in ("CMakeLists.txt", "build.sh", "README.md"):
+    put(name, open(os.path.join(src, name), "rb").read())
+text = open(os.path.join(src, "meshcheck.cpp")).read()
 fixes = [
-    ("    if (share > 0) hits.push_back({fi, share, exact, f.marker});",
-     "    if (share > kRelTol * size) hits.push_back({fi, share, exact, f.marker});  // gsse fix 1"),
     ("""  Poly tri;
   for (int i = 0; i < 3; ++i) {
     P2 q = project(t[i], f.axis);
@@ -60,10 +70,21 @@ static double roundingSlack(const Mesh& m, const uint32_t* v) {
 Placement placeFace("""
 fixes += [
     ("""Placement placeFace(""", slack),
-    ("""    if (share > kRelTol * size) hits.push_back({fi, share, exact, f.marker});  // gsse fix 1""",
-     """    if (share > kRelTol * size + roundingSlack(m, v)) hits.push_back({fi, share, exact, f.marker});  // gsse fix 1, 3"""),
-    ("""  if (!hits.empty() && std::fabs(covered - size) <= kRelTol * size)""",
-     """  if (!hits.empty() && std::fabs(covered - size) <= kRelTol * size + roundingSlack(m, v))  // gsse fix 3"""),
+    ("""  if (!hits.empty() && std::fabs(covered - size) <= kRelTol * size)
+    return hits.size() > 1 ? Placement::kSpanning : Placement::kRounded;""",
+     """  if (!hits.empty() && std::fabs(covered - size) <= kRelTol * size + roundingSlack(m, v)) {  // gsse fix 3
+    // gsse fix 1: every share covers its facet, but only shares beyond rounding decide where the
+    // face lies; a sliver takes the marker of the face's main facet (no span of markers)
+    const double slack = kRelTol * size + roundingSlack(m, v);
+    size_t mainHit = 0, significant = 0;
+    for (size_t i = 0; i < hits.size(); ++i) {
+      if (hits[i].share > hits[mainHit].share) mainHit = i;
+      if (hits[i].share > slack) ++significant;
+    }
+    for (FacetHit& h : hits)
+      if (h.share <= slack) h.marker = hits[mainHit].marker;
+    return significant > 1 ? Placement::kSpanning : Placement::kRounded;
+  }"""),
     ("""  double hullFlux = 0;   // divergence-theorem volume term of those hull faces
 };""",
      """  double hullFlux = 0;   // divergence-theorem volume term of those hull faces
@@ -86,4 +107,4 @@ for old, new in fixes:
     if text.count(old) != 1:
         sys.exit("meshcheck_fixed.py: meshcheck.cpp changed, cannot apply: " + old.splitlines()[0].strip())
     text = text.replace(old, new)
-open(path, "w").write(text)
+put("meshcheck.cpp", text.encode())

@@ -242,8 +242,9 @@ placement place(const facet_set<D>& fs, const vertex_facets& vf, const std::vect
       if (on < 0) return;
       exact = exact && on == 1;
     }
-    // a share of the order of rounding is no part of the face (it would "span" a neighbour facet)
-    if (const double s = fs.share(f, corners); s > slack) {
+    // every share counts towards its facet's coverage (a face across the seam of a thin facet
+    // has 1e-10 of its area there, which is all of that facet's coverage near it)
+    if (const double s = fs.share(f, corners); s > 0) {
       hits.push_back({f, s, exact});
       covered += s;
     }
@@ -252,10 +253,19 @@ placement place(const facet_set<D>& fs, const vertex_facets& vf, const std::vect
     hits.clear();
     return placement::off;
   }
-  if (hits.size() == 1) return placement::rounded;
-  const int m = fs[hits[0].facet].marker;
-  return std::all_of(hits.begin(), hits.end(), [&](const hit& h) { return fs[h.facet].marker == m; }) ? placement::spanning
-                                                                                                      : placement::mixed_markers;
+  // but where the face lies is decided by its shares beyond rounding: a vertex rounded an ulp
+  // across the common edge of two coplanar facets does not make the face span them
+  const hit* main = &hits[0];
+  std::size_t significant = 0;
+  bool one_marker = true;
+  for (const auto& h : hits) {
+    if (h.share > main->share) main = &h;
+    if (h.share > slack) ++significant;
+  }
+  for (const auto& h : hits)
+    if (h.share > slack) one_marker = one_marker && fs[h.facet].marker == fs[main->facet].marker;
+  if (significant <= 1) return placement::rounded;
+  return one_marker ? placement::spanning : placement::mixed_markers;
 }
 
 /// For each query point, the cells whose closure holds it (exact; positive cells only).

@@ -336,7 +336,9 @@ class gift_wrapper {
     d = -1;
     if (pr.tilt < 1e-4) {
       n = pr.n;
-      d = dot(n, pr.cc) - 4 * pr.tilt * (2 * reach + 2 * pr.l) - 1e-12 * (reach + pr.l);
+      double m = 0;  // rounding of dot(n, x) for points of this magnitude (a thin layer far from 0)
+      for (double x : pr.cc) m = std::max(m, std::abs(x));
+      d = dot(n, pr.cc) - 4 * pr.tilt * (2 * reach + 2 * pr.l) - 1e-12 * (reach + pr.l) - 16 * std::numeric_limits<double>::epsilon() * (m + reach);
     }
   }
 
@@ -499,7 +501,7 @@ class gift_wrapper {
     for (std::size_t a = 0; a < G; ++a) c[a] = 0.5 * (grid_.lower()[a] + grid_.upper()[a]);
     const double r = diagonal_ + pr.l;
     positive_side(pr, r + std::sqrt(dot(c - pr.cc, c - pr.cc)), n, d);
-    visit_cap(c, r, n, d, [&](vertex_id y, const coord& q) {
+    auto consider = [&](vertex_id y, const coord& q) {
       ++stats_.visits;
       const double t = K::estimate(pr, q);
       if ((best != no_vertex && !(t < best_t)) || in_face(f, y)) return true;
@@ -508,7 +510,10 @@ class gift_wrapper {
       best = y;
       best_t = t;
       return true;
-    });
+    };
+    visit_cap(c, r, n, d, consider);
+    // the cap's half-space is a floating-point bound: before giving up, every vertex, exactly
+    if (best == no_vertex) visit_box(grid_.lower(), grid_.upper(), consider);
     if (best == no_vertex) throw front_error(label + ": no vertex on the inner side of face " + describe(f));
     return best;
   }

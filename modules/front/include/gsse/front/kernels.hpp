@@ -16,6 +16,7 @@
 //                       circumcentre of f+q along f's normal; +inf behind f), a ranking hint
 //                       only: every decision is confirmed exactly
 //   grid_coord(v)       grid coordinates of vertex v
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -34,6 +35,16 @@ inline constexpr double max_relative_error = 1e-6;
 /// Radius of a ball that surely contains the exact circumball, given the double radius, the
 /// relative error bound of the centre construction and the longest edge.
 inline double padded(double r, double rel, double edge) { return r * (1 + 4 * rel + 1e-12) + 4 * rel * edge + 1e-300; }
+/// The ball (centre, r) grown by what rounding of coordinates of the centre's magnitude can do to
+/// the double distance tests against it (|q - centre|^2 <= r^2 with q near the ball): a small
+/// ball far from the origin (a thin layer 1e-5 thick at coordinate 0.5) would otherwise leave out
+/// a cocircular vertex that its exact, perturbed test must see.
+template <class C>
+inline double rounding_padded(const C& centre, double r) {
+  double m = 0;
+  for (double x : centre) m = std::max(m, std::abs(x));
+  return r + 16 * eps * (m + r);
+}
 }  // namespace detail
 
 /// Tetrahedra in 3D.
@@ -51,6 +62,11 @@ struct volume_kernel {
   coord grid_coord(vertex_id v) const { return p[v]; }
   const point3& grid_coord_ref(vertex_id v) const { return p[v]; }
   bool ball(const face& f, vertex_id x, coord& centre, double& r) const {
+    const bool ok = ball_unpadded(f, x, centre, r);
+    r = detail::rounding_padded(centre, r);
+    return ok && std::isfinite(r);
+  }
+  bool ball_unpadded(const face& f, vertex_id x, coord& centre, double& r) const {
     const point3& a = p[f[0]];
     const point3 u = p[f[1]] - a, v = p[f[2]] - a, w = p[x] - a;
     const point3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
@@ -117,6 +133,11 @@ struct plane_kernel {
   coord grid_coord(vertex_id v) const { return p[v]; }
   const point2& grid_coord_ref(vertex_id v) const { return p[v]; }
   bool ball(const face& f, vertex_id x, coord& centre, double& r) const {
+    const bool ok = ball_unpadded(f, x, centre, r);
+    r = detail::rounding_padded(centre, r);
+    return ok && std::isfinite(r);
+  }
+  bool ball_unpadded(const face& f, vertex_id x, coord& centre, double& r) const {
     const point2& a = p[f[0]];
     const point2 u = p[f[1]] - a, v = p[x] - a;
     const double d = 2 * (u[0] * v[1] - u[1] * v[0]);
@@ -178,6 +199,11 @@ struct facet_kernel {
   coord grid_coord(vertex_id v) const { return geometry::project(p[v], axis); }
   const point3& grid_coord_ref(vertex_id v) const { return p[v]; }  // for prefetching only
   bool ball(const face& f, vertex_id x, coord& centre, double& r) const {
+    const bool ok = ball_unpadded(f, x, centre, r);
+    r = detail::rounding_padded(centre, r);
+    return ok && std::isfinite(r);
+  }
+  bool ball_unpadded(const face& f, vertex_id x, coord& centre, double& r) const {
     const point3& a = p[f[0]];
     const point3 u = p[f[1]] - a, v = p[x] - a;
     const point3 n = cross(u, v);
