@@ -30,7 +30,7 @@ with open(f"{w}/cloud.node", "w") as f:
 with open(f"{w}/all.node", "w") as f:
     f.write(f"{n + 8} 3 0 0\n" + "".join(f"{i+1} {p[0]!r} {p[1]!r} {p[2]!r}\n" for i, p in enumerate(P + C)))
 PY
-  best_g=1e9 best_c=1e9 conform=0 steiner=0 tets=0 parts=""
+  best_g=1000000000 best_c=1000000000 conform=0 steiner=0 tets=0 parts=""
   for ((r = 0; r < repeat; ++r)); do
     t0=$(now)
     "$build/apps/gsse-mesh" "$work/cube.poly" --cloud "$work/cloud.node" --threads 1 --quiet -o "$work/g.node" --stats "$work/g.json"
