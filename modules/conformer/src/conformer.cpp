@@ -759,9 +759,40 @@ class state3 : public state<3> {
           const auto& E = edges_[e];
           if (std::find(E.facets.begin(), E.facets.end(), f) != E.facets.end()) continue;
           const point3 d = p[E.u == v ? E.v : E.u] - p[v];
-          if (std::abs(dot(d, facets_[f].unit)) < 0.8660254 * std::sqrt(dot(d, d))) acute_[v] = 1;
+          if (std::abs(dot(d, facets_[f].unit)) < 0.8660254 * std::sqrt(dot(d, d)) && near_corner(f, v, d)) acute_[v] = 1;
         }
       }
+  }
+  /// Whether direction d from corner v of facet f makes an angle below 60 degrees with the facet
+  /// itself, given that it does with its plane: its projection on the plane lies in the facet's
+  /// corner at v, or d is within 60 degrees of a side of the facet at v. An edge in the plane of
+  /// a facet it does not bound, outside the facet's corner (where coplanar facets of different
+  /// markers meet), is at 90 degrees from the facet, not 0. Where v is not a simple corner (no
+  /// side or more than two sides of f at it) the plane decides, as before.
+  bool near_corner(std::uint32_t f, vertex_id v, const point3& d) const {
+    const auto& S = facets_[f];
+    const auto& p = out_.points;
+    point3 out{}, in{};
+    int outs = 0, ins = 0;
+    for (auto [e, fw] : S.sides) {
+      const auto& E = edges_[e];
+      const vertex_id a = fw ? E.u : E.v, b = fw ? E.v : E.u;  // the facet on the left of a -> b
+      if (a == v) out = p[b] - p[v], ++outs;
+      if (b == v) in = p[a] - p[v], ++ins;
+    }
+    if (outs != 1 || ins != 1) return true;
+    auto angle_cos = [](const point3& x, const point3& y) { return dot(x, y) / std::sqrt(dot(x, x) * dot(y, y)); };
+    if (angle_cos(d, out) > 0.5 || angle_cos(d, in) > 0.5) return true;
+    // counter-clockwise about the facet's normal from `out`: the corner spans [0, angle of `in`]
+    auto angle = [&](const point3& x) {
+      const double a = std::atan2(dot(x, S.e2), dot(x, S.e1)), o = std::atan2(dot(out, S.e2), dot(out, S.e1));
+      double t = a - o;
+      while (t < 0) t += 2 * std::acos(-1.0);
+      return t;
+    };
+    const point3 dp = d - dot(d, S.unit) * S.unit;
+    if (dot(dp, dp) == 0) return true;  // along the normal: not below 60 degrees by the test above anyway
+    return angle(dp) < angle(in);
   }
 
   /// Facet f from its region: constraint edges (registered as PLC edges) and embedded points.
