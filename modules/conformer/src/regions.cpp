@@ -8,36 +8,17 @@
 #include <map>
 #include <numeric>
 
+#include "gsse/container/union_find.hpp"
 #include "gsse/geometry/predicates.hpp"
+#include "gsse/geometry/ray_tilts.hpp"
 #include "gsse/traversal/for_each.hpp"
 #include "gsse/traversal/parallel_sort.hpp"
 
 namespace gsse::conformer {
 namespace {
 
-struct union_find {
-  std::vector<std::size_t> up;
-  explicit union_find(std::size_t n) : up(n) { std::iota(up.begin(), up.end(), 0); }
-  std::size_t find(std::size_t x) {
-    while (up[x] != x) x = up[x] = up[up[x]];
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a), b = find(b);
-    if (a != b) up[std::max(a, b)] = std::min(a, b);
-  }
-};
 
-// Ray directions tried in turn (fixed, "irrational" so that axis-aligned input rarely meets a
-// ray exactly in an edge or vertex).
-constexpr std::array<std::array<double, 3>, 8> tilts{{{0.0123, 0.0271, 0.0389},
-                                                      {-0.0331, 0.0217, 0.0113},
-                                                      {0.0411, -0.0193, 0.0277},
-                                                      {0.0157, 0.0353, -0.0241},
-                                                      {0.6123, 0.5271, 0.4389},
-                                                      {-0.5331, 0.7217, 0.3113},
-                                                      {0.3411, -0.6193, 0.7277},
-                                                      {0.4157, 0.2353, -0.8241}}};
+using geometry::ray_tilts;
 
 template <std::size_t D>
 double diameter(const std::vector<point<D>>& p) {
@@ -117,7 +98,7 @@ std::pair<long, int> cast(const boundary<D>& b, const point<D>& o, const point<D
 template <std::size_t D>
 point<D> tilt_dir(const point<D>& base, std::size_t k, double len) {
   point<D> d{};
-  for (std::size_t i = 0; i < D; ++i) d[i] = base[i] + tilts[k][i];
+  for (std::size_t i = 0; i < D; ++i) d[i] = base[i] + ray_tilts[k][i];
   double n = std::sqrt(dot(d, d));
   if (n == 0) n = 1;
   return (len / n) * d;
@@ -146,7 +127,7 @@ point<D> face_centre(const boundary<D>& b, std::size_t f) {
 template <std::size_t D>
 long first_side(const boundary<D>& b, const point<D>& o, const point<D>& base, long skip, double len,
                 const std::string& what, vertex_id skip_vertex = no_vertex) {
-  for (std::size_t k = 0; k < tilts.size(); ++k) {
+  for (std::size_t k = 0; k < ray_tilts.size(); ++k) {
     bool degenerate, on_face;
     auto [f, s] = cast(b, o, tilt_dir(base, k, len), skip, degenerate, on_face, skip_vertex);
     if (on_face) throw conform_error(what + " lies on the boundary");
@@ -160,7 +141,7 @@ template <std::size_t D>
 labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
   const auto& pts = b.points;
   const std::size_t F = b.faces.size();
-  union_find shells(2 * F);
+  gsse::union_find<std::size_t> shells(2 * F);
   std::vector<std::array<std::size_t, 3>> free_ends;  // free edges (3D) / ends (2D): (u, v, face)
   // gather faces around each (D-2)-simplex: edges in 3D, vertices in 2D
   if constexpr (D == 3) {
@@ -294,7 +275,7 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
   }
   // cells: link each shell to the shell its inward ray hits first
   const double len = 4 * diameter(pts);
-  union_find cells(2 * F + 1);
+  gsse::union_find<std::size_t> cells(2 * F + 1);
   const std::size_t unbounded = 2 * F;
   std::vector<char> done(2 * F, 0);
   std::vector<std::size_t> probes;  // the first side of each shell

@@ -7,6 +7,7 @@
 #include <numeric>
 #include <optional>
 
+#include "gsse/container/union_find.hpp"
 #include "gsse/geometry/predicates.hpp"
 
 namespace gsse::input {
@@ -202,18 +203,6 @@ single one_facet(const plc<3>& p, std::size_t f, double tol) {
   return out;
 }
 
-struct union_find {
-  std::vector<std::uint32_t> up;
-  explicit union_find(std::size_t n) : up(n) { std::iota(up.begin(), up.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (up[x] != x) x = up[x] = up[up[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a), b = find(b);
-    if (a != b) up[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 /// Edges of a region re-expressed in the projection dropping `axis` (the orientation flips when
 /// the normal's components along the two axes have opposite signs).
@@ -249,7 +238,7 @@ std::vector<facet_region> facet_regions(const plc<3>& p, const facet_options& o)
       auto& u = users[{std::min(e[0], e[1]), std::max(e[0], e[1])}];
       if (u.empty() || u.back() != f) u.push_back(f);
     }
-  union_find groups(F);
+  gsse::union_find<> groups(F);
   auto coplanar = [&](const single& a, const single& b) {
     for (vertex_id v : b.vertices)
       if (!(std::abs(a.pl.offset(p.points[v])) <= tol)) return false;

@@ -7,7 +7,9 @@
 #include <map>
 #include <numeric>
 
+#include "gsse/container/union_find.hpp"
 #include "gsse/geometry/predicates.hpp"
+#include "gsse/geometry/ray_tilts.hpp"
 #include "gsse/traversal/for_each.hpp"
 
 namespace gsse::plc_tools {
@@ -18,16 +20,7 @@ struct triangle {
   std::size_t facet;
 };
 
-// Fixed, "irrational" tilts: axis-aligned input rarely puts a tilted ray exactly through an
-// edge or vertex. The first four are small (a ray stays close to the direction asked for).
-constexpr std::array<point3, 8> tilts{{{0.0123, 0.0271, 0.0389},
-                                       {-0.0331, 0.0217, 0.0113},
-                                       {0.0411, -0.0193, 0.0277},
-                                       {0.0157, 0.0353, -0.0241},
-                                       {0.6123, 0.5271, 0.4389},
-                                       {-0.5331, 0.7217, 0.3113},
-                                       {0.3411, -0.6193, 0.7277},
-                                       {0.4157, 0.2353, -0.8241}}};
+using geometry::ray_tilts;
 
 point3 unit(const point3& d) {
   const double n = std::sqrt(dot(d, d));
@@ -110,7 +103,7 @@ class locator {
   // side), c on another facet, or every direction touched.
   std::optional<point3> midpoint_to_first_hit(const point3& c, const point3& dir, std::size_t skip) const {
     for (std::size_t d = 0; d <= 4; ++d) {
-      const point3 u = d == 0 ? dir : unit(dir + tilts[d - 1]);
+      const point3 u = d == 0 ? dir : unit(dir + ray_tilts[d - 1]);
       const point3 far = c + len_ * u;
       double best = std::numeric_limits<double>::infinity();
       bool retry = false;
@@ -134,7 +127,7 @@ class locator {
   // Whether m is inside the volume (a ray crosses its boundary an odd number of times) and on no
   // facet. Rays that touch an edge or vertex of any facet are cast again in another direction.
   bool odd_and_clear(const point3& m, const std::vector<char>& mine) const {
-    for (const auto& tilt : tilts) {
+    for (const auto& tilt : ray_tilts) {
       const point3 far = m + len_ * unit(tilt);
       std::size_t count = 0;
       bool retry = false;
@@ -157,7 +150,7 @@ class locator {
   /// a facet of a volume or every direction touched an edge or vertex.
   long holder(const point3& m, const std::vector<std::vector<std::uint32_t>>& of, std::size_t volumes) const {
     std::vector<std::size_t> count(volumes);
-    for (const auto& tilt : tilts) {
+    for (const auto& tilt : ray_tilts) {
       const point3 far = m + len_ * unit(tilt);
       std::fill(count.begin(), count.end(), 0);
       bool retry = false;
@@ -207,12 +200,7 @@ class locator {
 // inside (embedded, kept) and a part outside. Each piece's facets ascending, pieces by first facet.
 std::vector<std::vector<std::size_t>> loose_pieces(const plc<3>& p, const std::vector<std::vector<std::uint32_t>>& of) {
   const std::size_t n = p.facets.size();
-  std::vector<std::size_t> parent(n);
-  std::iota(parent.begin(), parent.end(), std::size_t{0});
-  auto root = [&](std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  gsse::union_find<std::size_t> pieces_of(n);
   std::map<std::pair<vertex_id, vertex_id>, std::size_t> first;
   for (std::size_t f = 0; f < n; ++f) {
     if (of[f].empty()) continue;
@@ -228,12 +216,12 @@ std::vector<std::vector<std::size_t>> loose_pieces(const plc<3>& p, const std::v
       for (std::size_t k = 0; poly.size() >= 2 && k < poly.size(); ++k) {
         const vertex_id a = poly[k], b = poly[(k + 1) % poly.size()];
         const auto [it, fresh] = first.try_emplace({std::min(a, b), std::max(a, b)}, f);
-        if (!fresh && it->second < n) parent[root(f)] = root(it->second);
+        if (!fresh && it->second < n) pieces_of.unite(f, it->second);
       }
   }
   std::map<std::size_t, std::vector<std::size_t>> pieces;  // root -> facets, ascending
   for (std::size_t f = 0; f < n; ++f)
-    if (of[f].empty()) pieces[root(f)].push_back(f);
+    if (of[f].empty()) pieces[pieces_of.find(f)].push_back(f);
   std::vector<std::vector<std::size_t>> list;
   for (auto& [r, fs] : pieces) list.push_back(std::move(fs));
   std::sort(list.begin(), list.end());

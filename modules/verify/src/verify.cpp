@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "facets.hpp"
+#include "gsse/container/union_find.hpp"
 #include "gsse/geometry/exact_ball.hpp"
 #include "gsse/geometry/predicates.hpp"
 #include "gsse/traversal/for_each.hpp"
@@ -70,18 +71,6 @@ std::size_t in_tasks(unsigned threads, std::size_t n, F&& fn) {
   return tasks.size();
 }
 
-struct union_find {
-  std::vector<std::uint32_t> up;
-  explicit union_find(std::size_t n) : up(n) { std::iota(up.begin(), up.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (up[x] != x) x = up[x] = up[up[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a), b = find(b);
-    if (a != b) up[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 template <std::size_t D>
 int orientation(const std::array<point<D>, D + 1>& x) {
@@ -255,15 +244,14 @@ placement place(const facet_set<D>& fs, const vertex_facets& vf, const std::vect
   }
   // but where the face lies is decided by its shares beyond rounding: a vertex rounded an ulp
   // across the common edge of two coplanar facets does not make the face span them
-  const hit* main = &hits[0];
   std::size_t significant = 0;
   bool one_marker = true;
-  for (const auto& h : hits) {
-    if (h.share > main->share) main = &h;
-    if (h.share > slack) ++significant;
-  }
+  int marker = 0;  // of the first share beyond rounding
   for (const auto& h : hits)
-    if (h.share > slack) one_marker = one_marker && fs[h.facet].marker == fs[main->facet].marker;
+    if (h.share > slack) {
+      if (significant++ == 0) marker = fs[h.facet].marker;
+      one_marker = one_marker && fs[h.facet].marker == marker;
+    }
   if (significant <= 1) return placement::rounded;
   return one_marker ? placement::spanning : placement::mixed_markers;
 }
@@ -533,7 +521,7 @@ report check(const domain<D>& d, const plc<D>& input, const options& o) {
     double slack = 0;  // the rounding slack of the faces on it (rounding_slack)
   };
   std::vector<coverage> cov(fs.size());
-  union_find uf(nc);
+  gsse::union_find<> uf(nc);
   tally nonmanifold, folded, off_facet, mixed_markers;
   double off_facet_flux = 0;
   std::vector<hit> hits;
