@@ -1495,9 +1495,16 @@ class state3 : public state<3> {
 
   /// Sizing: a triangular lattice of spacing `size` in each facet's plane, clipped to the facet
   /// and kept size/2 away from its boundary vertices. Exact on axis-aligned facets (the constant
-  /// coordinate is copied), within rounding on slanted ones.
+  /// coordinate is copied), within rounding on slanted ones. The lattice is global: its frame
+  /// comes from the plane's normal alone (sign made canonical) and its origin is one point for
+  /// all facets, so parallel facets get the same lattice, point opposite point. Across a layer
+  /// thinner than the size (an oxide, a liner) a point then projects onto a vertex of the other
+  /// side, not into a triangle whose equatorial ball it would encroach: lattices anchored at each
+  /// facet's own corner were offset by the layer's step and refined the layer's both walls 70%
+  /// beyond the size (the trench liner).
   void seed_facets() {
     const double h = opt_.size;
+    const point3 origin = box_lo_;
     // each facet's lattice is computed in parallel (it reads only its own facet), then the points
     // are added facet by facet, so ids are the same for any thread count
     std::vector<std::vector<point3>> seeds(facets_.size());
@@ -1509,17 +1516,19 @@ class state3 : public state<3> {
       if (S.sides.empty()) return;
       const auto vs = facet_vertices(f);
       const point3 o = out_.points[vs[0]];
-      // in-plane orthonormal basis (u along the first boundary edge, n the facet's normal: not a
-      // cross product of two of its points, which may lie on one slanted edge)
-      const auto& e0 = edges_[S.sides[0].first];
-      const point3& n = S.unit;
-      point3 u = out_.points[e0.v] - out_.points[e0.u];
-      u = u - dot(u, n) * n;
-      u = (1.0 / std::sqrt(dot(u, u))) * u;
-      const point3 v = cross(n, u);
+      // in-plane orthonormal frame from the normal only: e1 = unit x (least axis), flipped with
+      // the normal so that the two orientations of a plane get the same frame
+      double sign = 1;
+      for (std::size_t k = 0; k < 3; ++k)
+        if (S.unit[k] != 0) {
+          sign = S.unit[k] > 0 ? 1.0 : -1.0;
+          break;
+        }
+      const point3 u = sign * S.e1, v = S.e2;
+      const double ao = dot(o - origin, u), bo = dot(o - origin, v);
       double ulo = 1e300, uhi = -1e300, vlo = 1e300, vhi = -1e300;
       for (vertex_id w : vs) {
-        const point3 d = out_.points[w] - o;
+        const point3 d = out_.points[w] - origin;
         ulo = std::min(ulo, dot(d, u)), uhi = std::max(uhi, dot(d, u));
         vlo = std::min(vlo, dot(d, v)), vhi = std::max(vhi, dot(d, v));
       }
@@ -1527,12 +1536,16 @@ class state3 : public state<3> {
       auto at = [&](vertex_id w) -> const point3& { return w < base ? out_.points[w] : mine[w - base]; };
       hash_grid<3> near(o, 0.5 * h);
       for (vertex_id w : vs) near.insert(w, out_.points[w]);
+      // lattice point (i, j) at ((i + 0.0137 + (j odd) / 2) h, (j + 0.0271) row) from the origin:
+      // the offsets keep rows and columns off axis-aligned boundary edges through round numbers
       const double row = h * std::sqrt(3.0) / 2;
-      for (long j = 0; vlo + row * (static_cast<double>(j) + 0.0271) < vhi; ++j)
-        for (long i = 0; ulo + h * (static_cast<double>(i) + 0.0137) < uhi; ++i) {
-          const double a = ulo + h * (static_cast<double>(i) + 0.0137 + 0.5 * static_cast<double>(j % 2));
-          const double b = vlo + row * (static_cast<double>(j) + 0.0271);
-          point3 q = o + a * u + b * v;
+      const long j0 = static_cast<long>(std::floor(vlo / row - 0.0271)), i0 = static_cast<long>(std::floor(ulo / h - 0.5137));
+      for (long j = j0; row * (static_cast<double>(j) + 0.0271) <= vhi; ++j)
+        for (long i = i0; h * (static_cast<double>(i) + 0.0137) <= uhi; ++i) {
+          const double a = h * (static_cast<double>(i) + 0.0137 + 0.5 * static_cast<double>(j & 1));
+          const double b = row * (static_cast<double>(j) + 0.0271);
+          if (a < ulo || a > uhi || b < vlo) continue;
+          point3 q = o + (a - ao) * u + (b - bo) * v;
           for (std::size_t k = 0; k < 3; ++k)
             if (S.constant[k]) q[k] = S.constant_value[k];
           bool clear = true;
