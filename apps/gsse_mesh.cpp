@@ -23,10 +23,12 @@ void usage(std::FILE* to) {
   std::fputs(
       "usage: gsse-mesh INPUT [-o OUTPUT] [--size H] [--cloud POINTS.node] [--threads N] [--verify]\n"
       "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
-      "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly]\n"
+      "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly] [--msh 4.1|2.2]\n"
       "  INPUT    TetGen .poly/.smesh (3D), Triangle .poly (2D), or a closed surface: OFF, STL,\n"
       "           Gmsh .msh surface mesh (its volumes become segments)\n"
-      "  -o       output mesh: .vtu, .msh, or .node (writes .node/.ele/.face beside it)\n"
+      "  -o       output mesh: .vtu, .msh, or .node (writes .node/.ele/.face beside it); boundary\n"
+      "           and interface faces keep the input's facet markers (docs/io.md)\n"
+      "  --msh    Gmsh format version of a .msh output: 4.1 (default) or 2.2 (ASCII, as devsim reads)\n"
       "  --size   target element size H (default: none, boundary conforming only)\n"
       "  --cloud  extra interior points (.node); points outside every segment are dropped\n"
       "  --verify check the mesh against the input (valid, conforming, labelled, Delaunay); if it\n"
@@ -46,7 +48,7 @@ struct args {
   std::string input, output, cloud, stats, rules, fill, plc_out;
   double size = 0;
   unsigned threads = 1;
-  bool verify = false, quiet = false, no_merge = false;
+  bool verify = false, quiet = false, no_merge = false, msh22 = false;
   std::size_t max_steiner = 2'000'000;
 };
 
@@ -91,7 +93,7 @@ int run(const gsse::plc<D>& p, const args& a) {
     if (ends(".vtu"))
       gsse::io::write_vtu(d, out);
     else if (ends(".msh"))
-      gsse::io::write_msh(d, out);
+      gsse::io::write_msh(d, out, false, a.msh22 ? gsse::io::msh_version::v22 : gsse::io::msh_version::v41);
     else if (ends(".node"))
       gsse::io::write_node_ele(d, out.substr(0, out.size() - 5), a.threads);
     else
@@ -160,7 +162,16 @@ int main(int argc, char** argv) {
       } else if (s == "--cloud") {
         a.cloud = value();
       } else if (s == "--threads") {
-        a.threads = static_cast<unsigned>(std::stoul(value()));
+        const std::string v = value();
+        std::size_t used = 0;
+        const long n = v.empty() || v[0] == '-' || v[0] == '+' ? -1 : std::stol(v, &used);
+        if (n < 1 || n > 4096 || used != v.size())
+          throw std::invalid_argument("--threads must be a whole number from 1 to 4096, not '" + v + "'");
+        a.threads = static_cast<unsigned>(n);
+      } else if (s == "--msh") {
+        const std::string v = value();
+        if (v != "2.2" && v != "4.1") throw std::invalid_argument("--msh must be 4.1 or 2.2, not '" + v + "'");
+        a.msh22 = v == "2.2";
       } else if (s == "--stats") {
         a.stats = value();
       } else if (s == "--fill") {
@@ -197,6 +208,15 @@ int main(int argc, char** argv) {
   if (a.input.empty()) {
     usage(stderr);
     return 2;
+  }
+  if (!a.output.empty()) {  // before meshing: an unknown format would be found out only at the end
+    const auto dot = a.output.rfind('.');
+    const std::string e = dot == std::string::npos ? "" : a.output.substr(dot);
+    if (e != ".vtu" && e != ".msh" && e != ".node") {
+      std::fprintf(stderr, "gsse-mesh: %s: unknown output format '%s' (use .vtu, .msh or .node)\n", a.output.c_str(), e.c_str());
+      usage(stderr);
+      return 2;
+    }
   }
   try {
     std::vector<gsse::io::plc_volume> volumes;

@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """Independent check of our writers: meshio reads the .vtu and .msh files io_write_samples wrote
 and must find the point and cell counts and the segment number of every cell ("segment" cell
-data in .vtu, "gmsh:physical" in .msh). Then meshio writes a binary .msh 4.1 of its own, and
+data in .vtu, "gmsh:physical" in .msh). In a .msh, the faces of dimension D-1 must be exactly
+the interface faces between the two segments (found here by brute force from the cells), in one
+physical group named "<first>:<second>"; the .vtu's companion BASE.boundary.vtu must list every
+face of the segments' boundaries once. Then meshio writes a binary .msh 4.1 of its own, and
 our reader (io_write_samples --read) must read it back with the same counts and segments.
 
 usage: check_meshio.py SAMPLE_DIR IO_WRITE_SAMPLES"""
@@ -30,9 +33,37 @@ def main():
         path, npts, ncells = row[0], int(row[1]), int(row[2])
         runs = [(int(row[k]), int(row[k + 1])) for k in range(3, len(row), 2)]
         m = meshio.read(path)
-        got_cells = sum(len(b.data) for b in m.cells)
+        dim = 3 if any(b.type == "tetra" for b in m.cells) else 2
+        top = "tetra" if dim == 3 else "triangle"
         key = "segment" if path.endswith(".vtu") else "gmsh:physical"
-        seg = np.concatenate(m.cell_data[key]) if key in m.cell_data else np.array([])
+        blocks = [k for k, b in enumerate(m.cells) if b.type == top]
+        got_cells = sum(len(m.cells[k].data) for k in blocks)
+        seg = np.concatenate([m.cell_data[key][k] for k in blocks]) if key in m.cell_data else np.array([])
+        # faces of the cells: interface (two segments) and boundary (one cell) faces, brute force
+        cells = np.concatenate([m.cells[k].data for k in blocks])
+        uses = {}
+        for c, (cell, s) in enumerate(zip(cells, seg)):
+            for i in range(dim + 1):
+                f = tuple(sorted(int(v) for j, v in enumerate(cell) if j != i))
+                uses.setdefault(f, []).append(int(s))
+        interface = {f for f, ss in uses.items() if len(ss) == 2 and ss[0] != ss[1]}
+        outer = {f for f, ss in uses.items() if len(ss) == 1}
+        if path.endswith(".msh"):
+            faces = [k for k, b in enumerate(m.cells) if b.type == ("triangle" if dim == 3 else "line")]
+            got = [tuple(sorted(int(v) for v in f)) for k in faces for f in m.cells[k].data]
+            tags = {int(t) for k in faces for t in m.cell_data["gmsh:physical"][k]}
+            names = {int(v[0]): n for n, v in m.field_data.items() if int(v[1]) == dim - 1}
+            faces_ok = sorted(got) == sorted(interface) and len(tags) == 1 and ":" in names.get(tags.pop(), "")
+            print(f"{'ok  ' if faces_ok else 'FAIL'} {os.path.basename(path)}: {len(got)} faces of dimension {dim - 1}, "
+                  f"{len(interface)} interface faces by brute force, groups {sorted(names.values())}")
+            failures += not faces_ok
+        else:
+            b = meshio.read(path.replace(".vtu", ".boundary.vtu"))
+            got = [tuple(sorted(int(v) for v in f)) for blk in b.cells for f in blk.data]
+            faces_ok = sorted(got) == sorted(interface | outer) and len(got) == len(set(got))
+            print(f"{'ok  ' if faces_ok else 'FAIL'} {os.path.basename(path)}: boundary.vtu {len(got)} faces, "
+                  f"{len(interface)} interface + {len(outer)} outer by brute force")
+            failures += not faces_ok
         ok = len(m.points) == npts and got_cells == ncells and np.array_equal(seg, expected_cells(runs))
         if path.endswith(".vtu"):
             names = sorted(m.point_data)

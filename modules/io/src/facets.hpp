@@ -157,6 +157,48 @@ std::vector<outer_facet<D>> outer_facets(const domain<D>& d, const std::string& 
   return r;
 }
 
+/// The markers of the domain's marked faces (domain::marked_faces), by sorted vertices.
+template <std::size_t D>
+class marker_lookup {
+ public:
+  explicit marker_lookup(const domain<D>& d) {
+    map_.reserve(d.marked_faces().size());
+    for (const auto& f : d.marked_faces()) map_.emplace(sorted(f.vertices), f.marker);
+  }
+  /// The marker of face f (any vertex order), 0 if unmarked.
+  int operator()(std::array<vertex_id, D> f) const {
+    const auto it = map_.find(sorted(f));
+    return it == map_.end() ? 0 : it->second;
+  }
+  bool empty() const { return map_.empty(); }
+
+ private:
+  static std::array<vertex_id, D> sorted(std::array<vertex_id, D> f) {
+    std::sort(f.begin(), f.end());
+    return f;
+  }
+  std::unordered_map<std::array<vertex_id, D>, int, key_hash> map_;
+};
+
+/// The marked faces of d that are not boundary or interface facets (marked facets inside one
+/// segment), in the domain's order.
+template <std::size_t D>
+std::vector<std::pair<std::array<vertex_id, D>, int>> inner_marked(const domain<D>& d, const std::vector<outer_facet<D>>& outer) {
+  std::unordered_set<std::array<vertex_id, D>, key_hash> seen;
+  for (const auto& f : outer) {
+    auto k = f.vertices;
+    std::sort(k.begin(), k.end());
+    seen.insert(k);
+  }
+  std::vector<std::pair<std::array<vertex_id, D>, int>> r;
+  for (const auto& f : d.marked_faces()) {
+    auto k = f.vertices;
+    std::sort(k.begin(), k.end());
+    if (seen.insert(k).second) r.push_back({f.vertices, f.marker});
+  }
+  return r;
+}
+
 /// finalize() of every segment; a facet shared by more than two cells becomes an io_error.
 template <std::size_t D>
 void finalize_all(domain<D>& d, const std::string& file) {

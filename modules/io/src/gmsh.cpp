@@ -9,12 +9,14 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <tuple>
 #include <unordered_map>
 
 #include "binary_cursor.hpp"
 #include "facets.hpp"
 #include "gsse/io/atomic_file.hpp"
 #include "number_format.hpp"
+#include "parallel_text.hpp"
 
 namespace gsse::io {
 namespace {
@@ -802,15 +804,137 @@ plc<3> read_msh_plc(const std::string& path, std::vector<plc_volume>* volumes) {
   return out;
 }
 
+namespace {
+
+/// The boundary groups of a mesh for Gmsh: one entity of dimension D-1 per (marker, first
+/// segment, second segment) of its boundary, interface and marked faces; a physical group per
+/// nonzero marker (tag = the marker when positive, name from the sidecar, else "facet_<m>") and
+/// per interface between two segments (name "<first>:<second>", first of lower number).
 template <std::size_t D>
-void write_msh(const domain<D>& d, const std::string& path, bool binary) {
+struct boundary_groups {
+  struct entity {
+    int marker;
+    long a, b;                              // segment indices; b < 0: outside (-1) or inside a (-2)
+    std::vector<std::array<vertex_id, D>> faces;
+    std::vector<int> physicals;
+  };
+  struct group {
+    int tag;
+    std::string name;
+  };
+  std::vector<entity> entities;
+  std::vector<group> groups;  // dimension D-1
+
+  boundary_groups(const domain<D>& d, const std::string& path) {
+    const auto outer = detail::outer_facets(d, path);
+    const detail::marker_lookup<D> marker(d);
+    std::map<std::tuple<int, long, long>, std::size_t> at;
+    auto add = [&](int m, long a, long b, const std::array<vertex_id, D>& f) {
+      auto [it, fresh] = at.try_emplace({m, a, b}, entities.size());
+      if (fresh) entities.push_back({m, a, b, {}, {}});
+      entities[it->second].faces.push_back(f);
+    };
+    for (const auto& f : outer) add(marker.empty() ? 0 : marker(f.vertices), static_cast<long>(f.first), f.second, f.vertices);
+    for (const auto& [f, m] : detail::inner_marked(d, outer)) add(m, -2, -2, f);
+    // groups: positive markers keep their number as tag; interfaces and other markers after them
+    std::map<int, int> marker_tag;
+    int next = 1;
+    for (const auto& e : entities)
+      if (e.marker > 0) marker_tag[e.marker] = e.marker, next = std::max(next, e.marker + 1);
+    for (const auto& e : entities)
+      if (e.marker < 0 && !marker_tag.count(e.marker)) marker_tag[e.marker] = 0;
+    std::map<std::pair<long, long>, int> interface_tag;
+    for (const auto& e : entities)
+      if (e.b >= 0) interface_tag[{e.a, e.b}] = 0;
+    for (auto& [ab, t] : interface_tag) t = next++;
+    for (auto& [m, t] : marker_tag)
+      if (t == 0) t = next++;
+    const auto& segs = d.segments();
+    for (const auto& [m, t] : marker_tag) {
+      const auto n = d.marker_names().find(m);
+      groups.push_back({t, n != d.marker_names().end() ? n->second : "facet_" + std::to_string(m)});
+    }
+    for (const auto& [ab, t] : interface_tag)
+      groups.push_back({t, segs[static_cast<std::size_t>(ab.first)].name() + ":" + segs[static_cast<std::size_t>(ab.second)].name()});
+    std::sort(groups.begin(), groups.end(), [](const group& x, const group& y) { return x.tag < y.tag; });
+    for (auto& e : entities) {
+      if (e.marker != 0) e.physicals.push_back(marker_tag.at(e.marker));
+      if (e.b >= 0) e.physicals.push_back(interface_tag.at({e.a, e.b}));
+    }
+    // faces in no group (unmarked outer boundary) are left out, as Gmsh leaves out elements of
+    // entities without a physical group (meshio cannot read a file that mixes both)
+    std::erase_if(entities, [](const entity& e) { return e.physicals.empty(); });
+    for (const auto& g : groups)
+      if (g.name.find_first_of("\"\n\r") != std::string::npos)
+        throw io_error::whole(path, "group name '" + g.name + "' contains a quote or newline, which .msh cannot hold");
+  }
+};
+
+template <std::size_t D>
+void write_msh22(const domain<D>& d, const boundary_groups<D>& g, atomic_file& f) {
+  const auto& pts = d.points();
+  const auto& segs = d.segments();
+  auto& o = f.stream();
+  o << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n" << segs.size() + g.groups.size() << '\n';
+  for (const auto& x : g.groups) o << D - 1 << ' ' << x.tag << " \"" << x.name << "\"\n";
+  for (const auto& s : segs) o << D << ' ' << s.number() << " \"" << s.name() << "\"\n";
+  o << "$EndPhysicalNames\n$Nodes\n" << pts.size() << '\n';
+  std::string line;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    line.clear();
+    detail::append_int(line, static_cast<long long>(i + 1));
+    for (std::size_t a = 0; a < 3; ++a) detail::append_real(line += ' ', a < D ? pts[i][a] : 0.0);
+    o << line << '\n';
+  }
+  // every element once per physical group of its entity (as Gmsh writes 2.2)
+  std::size_t total = 0;
+  for (const auto& s : segs) total += s.num_cells();
+  for (const auto& e : g.entities) total += e.faces.size() * e.physicals.size();
+  o << "$EndNodes\n$Elements\n" << total << '\n';  // lines, not distinct numbers
+  std::size_t tag = 0;
+  auto element = [&](std::size_t id, int type, int physical, long entity, const auto& vs) {
+    line.clear();
+    detail::append_int(line, static_cast<long long>(id));
+    detail::append_int(line += ' ', type);
+    line += " 2";
+    detail::append_int(line += ' ', physical);
+    detail::append_int(line += ' ', entity);
+    for (auto v : vs) detail::append_int(line += ' ', static_cast<long long>(v) + 1);
+    o << line << '\n';
+  };
+  for (std::size_t k = 0; k < segs.size(); ++k)
+    for (const auto& c : segs[k].cell_data()) element(++tag, D == 3 ? 4 : 2, segs[k].number(), static_cast<long>(k + 1), c);
+  // a face in two groups is written twice with the same element number, as Gmsh does: its
+  // reader then keeps one element in both groups
+  for (std::size_t k = 0; k < g.entities.size(); ++k) {
+    const std::size_t first = tag;
+    for (int ph : g.entities[k].physicals) {
+      std::size_t id = first;
+      for (const auto& fc : g.entities[k].faces) element(++id, D == 3 ? 2 : 1, ph, static_cast<long>(k + 1), fc);
+    }
+    tag = first + g.entities[k].faces.size();
+  }
+  o << "$EndElements\n";
+}
+
+}  // namespace
+
+template <std::size_t D>
+void write_msh(const domain<D>& d, const std::string& path, bool binary, msh_version version) {
   detail::check_domain(d, path);
   for (const auto& s : d.segments())
     if (s.name().find_first_of("\"\n\r") != std::string::npos)
       throw io_error::whole(path, "segment name '" + s.name() + "' contains a quote or newline, which .msh cannot hold");
+  if (binary && version == msh_version::v22) throw io_error::whole(path, "Gmsh 2.2 output is ASCII only");
+  const boundary_groups<D> g(d, path);
   const auto& pts = d.points();
   const auto& segs = d.segments();
   atomic_file f(path);
+  if (version == msh_version::v22) {
+    write_msh22(d, g, f);
+    f.commit();
+    return;
+  }
   auto& o = f.stream();
   msh_writer w(o, binary);
   o << "$MeshFormat\n4.1 " << (binary ? 1 : 0) << " 8\n";
@@ -818,26 +942,36 @@ void write_msh(const domain<D>& d, const std::string& path, bool binary) {
     w.i32(1);
     o << '\n';
   }
-  o << "$EndMeshFormat\n$PhysicalNames\n" << segs.size() << '\n';
+  o << "$EndMeshFormat\n$PhysicalNames\n" << segs.size() + g.groups.size() << '\n';
+  for (const auto& x : g.groups) o << D - 1 << ' ' << x.tag << " \"" << x.name << "\"\n";
   for (const auto& s : segs) o << D << ' ' << s.number() << " \"" << s.name() << "\"\n";
   o << "$EndPhysicalNames\n$Entities\n";
-  for (std::size_t k = 0; k < 4; ++k) w.size(k == D ? segs.size() : 0);
+  for (std::size_t k = 0; k < 4; ++k) w.size(k == D ? segs.size() : k + 1 == D ? g.entities.size() : 0);
   w.end_record();
-  for (std::size_t k = 0; k < segs.size(); ++k) {
+  auto bounds = [&](const auto& cells) {
     point3 lo{0, 0, 0}, hi{0, 0, 0};
-    if (segs[k].num_cells() > 0) {
-      const auto& p0 = pts[segs[k].cell(0)[0]];
-      for (std::size_t a = 0; a < D; ++a) lo[a] = hi[a] = p0[a];
-    }
-    for (const auto& c : segs[k].cell_data())
+    bool first = true;
+    for (const auto& c : cells)
       for (auto v : c)
         for (std::size_t a = 0; a < D; ++a) {
-          lo[a] = std::min(lo[a], pts[v][a]);
-          hi[a] = std::max(hi[a], pts[v][a]);
+          lo[a] = first ? pts[v][a] : std::min(lo[a], pts[v][a]);
+          hi[a] = first ? pts[v][a] : std::max(hi[a], pts[v][a]);
+          first = first && a + 1 < D;
         }
-    w.i32(static_cast<long long>(k + 1));
     for (double x : lo) w.real(x);
     for (double x : hi) w.real(x);
+  };
+  for (std::size_t k = 0; k < g.entities.size(); ++k) {  // curves (2D) or surfaces (3D)
+    w.i32(static_cast<long long>(k + 1));
+    bounds(g.entities[k].faces);
+    w.size(g.entities[k].physicals.size());
+    for (int ph : g.entities[k].physicals) w.i32(ph);
+    w.size(0);
+    w.end_record();
+  }
+  for (std::size_t k = 0; k < segs.size(); ++k) {
+    w.i32(static_cast<long long>(k + 1));
+    bounds(segs[k].cell_data());
     w.size(1);
     w.i32(segs[k].number());
     w.size(0);
@@ -874,6 +1008,10 @@ void write_msh(const domain<D>& d, const std::string& path, bool binary) {
     blocks += s.num_cells() > 0;
     total += s.num_cells();
   }
+  for (const auto& e : g.entities) {
+    blocks += !e.faces.empty();
+    total += e.faces.size();
+  }
   w.size(blocks);
   w.size(total);
   w.size(total ? 1 : 0);
@@ -893,10 +1031,22 @@ void write_msh(const domain<D>& d, const std::string& path, bool binary) {
       w.end_record();
     }
   }
+  for (std::size_t k = 0; k < g.entities.size(); ++k) {
+    w.i32(D - 1);
+    w.i32(static_cast<long long>(k + 1));
+    w.i32(D == 3 ? 2 : 1);
+    w.size(g.entities[k].faces.size());
+    w.end_record();
+    for (const auto& c : g.entities[k].faces) {
+      w.size(++tag);
+      for (auto v : c) w.size(std::uint64_t{v} + 1);
+      w.end_record();
+    }
+  }
   w.end_section("$EndElements");
   f.commit();
 }
-template void write_msh<2>(const domain<2>&, const std::string&, bool);
-template void write_msh<3>(const domain<3>&, const std::string&, bool);
+template void write_msh<2>(const domain<2>&, const std::string&, bool, msh_version);
+template void write_msh<3>(const domain<3>&, const std::string&, bool, msh_version);
 
 }  // namespace gsse::io

@@ -28,19 +28,27 @@ std::string strip_mesh_extension(const std::string& path) {
 }
 
 
-// .face/.edge files are optional; when present they must refer to existing points.
+// .face/.edge files are optional; when present they must refer to existing points. Returns the
+// faces with a nonzero marker below `base` (0: any nonzero marker): the input facets' markers
+// (write_node_ele writes interface codes first * base + second above them).
 template <std::size_t D>
-void check_facet_file(const std::string& file, long base, std::size_t npoints) {
-  if (!std::filesystem::exists(file)) return;
-  text_reader r(file);
-  r.require_line(D == 3 ? "face count line '<#faces> <#markers>'" : "edge count line '<#edges> <#markers>'");
-  const long n = r.integer_in(D == 3 ? "number of faces" : "number of edges", 0, 1'000'000'000);
-  (void)r.optional_integer("number of boundary markers", 0);
+std::vector<typename domain<D>::marked_face> read_facet_file(const std::string& file, long ibase, std::size_t npoints, int base) {
+  std::vector<typename domain<D>::marked_face> r;
+  if (!std::filesystem::exists(file)) return r;
+  text_reader t(file);
+  t.require_line(D == 3 ? "face count line '<#faces> <#markers>'" : "edge count line '<#edges> <#markers>'");
+  const long n = t.integer_in(D == 3 ? "number of faces" : "number of edges", 0, 1'000'000'000);
+  const long markers = t.optional_integer("number of boundary markers", 0);
+  if (markers < 0 || markers > 1) t.fail("invalid marker count " + std::to_string(markers));
   for (long i = 0; i < n; ++i) {
-    r.require_line((D == 3 ? "face " : "edge ") + std::to_string(i + 1) + " of " + std::to_string(n));
-    (void)r.integer(D == 3 ? "face number" : "edge number");
-    for (std::size_t k = 0; k < D; ++k) (void)detail::vertex_ref(r, base, npoints, "corner");
+    t.require_line((D == 3 ? "face " : "edge ") + std::to_string(i + 1) + " of " + std::to_string(n));
+    (void)t.integer(D == 3 ? "face number" : "edge number");
+    std::array<vertex_id, D> f;
+    for (auto& v : f) v = detail::vertex_ref(t, ibase, npoints, "corner");
+    const long m = markers ? t.optional_integer("boundary marker", 0) : 0;
+    if (m != 0 && (base == 0 || std::labs(m) < base)) r.push_back({f, static_cast<int>(m)});
   }
+  return r;
 }
 
 }  // namespace
@@ -107,7 +115,8 @@ domain<D> read_node_ele(const std::string& path) {
       it->second->add_cell(c);
     }
   }
-  check_facet_file<D>(base + (D == 3 ? ".face" : ".edge"), ibase, np);
+  d.marked_faces() = read_facet_file<D>(base + (D == 3 ? ".face" : ".edge"), ibase, np, names.face_marker_base);
+  d.marker_names() = names.facet_names;
   detail::finalize_all(d, base + ".ele");
   d.sync_slots();
   return d;
@@ -121,8 +130,12 @@ void write_node_ele(const domain<D>& d, const std::string& path, unsigned thread
   const auto& pts = d.points();
   detail::check_domain(d, base + ".ele");
   const auto faces = detail::outer_facets(d, base + (D == 3 ? ".face" : ".edge"), threads);
+  const detail::marker_lookup<D> marker(d);
+  const auto inner = detail::inner_marked(d, faces);
+  // the interface code first * m + second lies above every segment number and every marker
   int largest = 0;
   for (const auto& s : d.segments()) largest = std::max(largest, std::abs(s.number()));
+  for (const auto& f : d.marked_faces()) largest = std::max(largest, std::abs(f.marker));
   int m = 100;
   while (m <= largest) m *= 10;
 
@@ -155,15 +168,24 @@ void write_node_ele(const domain<D>& d, const std::string& path, unsigned thread
   }
   {
     auto& o = face.stream();
-    o << "# written by gsse::io; oriented into the first segment, marker = first*" << m << " + second (0: outside)\n"
-      << faces.size() << " 1\n";
-    detail::write_lines(o, faces.size(), threads, [&](std::size_t i, std::string& line) {
-      const auto& f = faces[i];
+    o << "# written by gsse::io; boundary and interface faces oriented into the first segment, then marked faces inside "
+         "a segment; marker = the input facet's marker, or where it has none first*" << m << " + second (0: outside)\n"
+      << faces.size() + inner.size() << " 1\n";
+    detail::write_lines(o, faces.size() + inner.size(), threads, [&](std::size_t i, std::string& line) {
       detail::append_int(line, static_cast<long long>(i + 1));
+      if (i >= faces.size()) {
+        const auto& [f, mk] = inner[i - faces.size()];
+        for (auto v : f) detail::append_int(line += ' ', static_cast<long long>(v) + 1);
+        detail::append_int(line += ' ', mk);
+        line += '\n';
+        return;
+      }
+      const auto& f = faces[i];
       for (auto v : f.vertices) detail::append_int(line += ' ', static_cast<long long>(v) + 1);
       const int a = d.segments()[f.first].number();
       const int b = f.second < 0 ? 0 : d.segments()[static_cast<std::size_t>(f.second)].number();
-      detail::append_int(line += ' ', static_cast<long long>(a) * m + b);
+      const int mk = marker.empty() ? 0 : marker(f.vertices);
+      detail::append_int(line += ' ', mk != 0 ? static_cast<long long>(mk) : static_cast<long long>(a) * m + b);
       line += '\n';
     });
   }
@@ -173,6 +195,7 @@ void write_node_ele(const domain<D>& d, const std::string& path, unsigned thread
     t.numbers.push_back(s.number());
   }
   t.face_marker_base = m;
+  t.facet_names = d.marker_names();
   if (threads > 1) {
     // each commit removes the file it replaces (freeing its blocks, a few ms for the .ele of 6e5
     // tetrahedra): overlap the three

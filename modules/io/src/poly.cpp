@@ -226,6 +226,7 @@ int poly_dimension(const std::string& path) {
 template <std::size_t D>
 void assign_region_names(plc<D>& p, const std::string& path) {
   const segment_table t = read_sidecar(base_of(path) + ".json");
+  for (const auto& [m, n] : t.facet_names) p.marker_names.try_emplace(m, n);
   for (auto& g : p.regions) {
     if (!g.name.empty()) continue;
     g.name = t.name_of(g.number);

@@ -110,8 +110,10 @@ std::string segment_table::name_of(int number) const {
 
 segment_table read_sidecar(const std::string& json_path) {
   segment_table t;
+  std::error_code fs_error;
+  if (!std::filesystem::exists(json_path, fs_error)) return t;  // no sidecar: no names
   std::ifstream in(json_path, std::ios::binary);
-  if (!in) return t;
+  if (!in || std::filesystem::is_directory(json_path, fs_error)) throw io_error::whole(json_path, "cannot read the sidecar file");
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string s = ss.str();
@@ -127,6 +129,32 @@ segment_table read_sidecar(const std::string& json_path) {
   if (!t.numbers.empty() && t.numbers.size() != t.names.size())
     j.fail(j.find_key("numbers"), "\"numbers\" has " + std::to_string(t.numbers.size()) + " entries, \"segments\" has " +
                                       std::to_string(t.names.size()));
+  // an object {"<marker>": "<name>", ...}; a number is the benchmark generator's facet count
+  if (auto i = j.find_key("facets"); i != std::string::npos && !(i < s.size() && (s[i] == '-' || (s[i] >= '0' && s[i] <= '9')))) {
+    if (i >= s.size() || s[i] != '{') j.fail(i, "\"facets\" must be an object {\"<marker>\": \"<name>\", ...}");
+    i = j.skip_ws(i + 1);
+    while (i < s.size() && s[i] != '}') {
+      const std::size_t at = i;
+      const std::string key = j.string_at(i);
+      long marker = 0;
+      auto [end, ec] = std::from_chars(key.data(), key.data() + key.size(), marker);
+      if (ec != std::errc() || end != key.data() + key.size() || marker < -1'000'000'000 || marker > 1'000'000'000)
+        j.fail(at, "facet marker '" + key + "' is not an integer");
+      i = j.skip_ws(i);
+      if (i >= s.size() || s[i] != ':') j.fail(i, "expected ':'");
+      i = j.skip_ws(i + 1);
+      const std::string name = j.string_at(i);
+      if (name.empty()) j.fail(i, "empty name for facet marker " + key);
+      if (!t.facet_names.emplace(static_cast<int>(marker), name).second) j.fail(at, "facet marker " + key + " named twice");
+      i = j.skip_ws(i);
+      if (i < s.size() && s[i] == ',') {
+        i = j.skip_ws(i + 1);
+        continue;
+      }
+      if (i >= s.size() || s[i] != '}') j.fail(i, "expected ',' or '}'");
+    }
+    if (i >= s.size()) j.fail(i, "unterminated \"facets\" object");
+  }
   if (auto i = j.find_key("face_marker_base"); i != std::string::npos) {
     const long v = j.integer_at(i);
     if (v < 0 || v > 1'000'000'000) j.fail(i, "face_marker_base out of range");
@@ -143,6 +171,15 @@ void write_sidecar(const std::string& json_path, const segment_table& t) {
     for (std::size_t k = 0; k < t.numbers.size(); ++k) o << (k ? ", " : "") << t.numbers[k];
     o << "]";
     if (t.face_marker_base > 0) o << ",\n \"face_marker_base\": " << t.face_marker_base;
+    if (!t.facet_names.empty()) {
+      o << ",\n \"facets\": {";
+      bool first = true;
+      for (const auto& [m, n] : t.facet_names) {
+        o << (first ? "" : ", ") << quoted(std::to_string(m)) << ": " << quoted(n);
+        first = false;
+      }
+      o << "}";
+    }
     o << "\n}\n";
   });
 }

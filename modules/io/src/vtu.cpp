@@ -54,6 +54,41 @@ std::string column_bytes(const std::vector<T>& col, std::size_t n) {
   return b;
 }
 
+void write_grid(std::ostream& o, const std::string& points, std::size_t npoints, std::size_t ncells,
+                const std::vector<data_array>& arrays, const std::string& conn, const std::string& offsets,
+                const std::string& types) {
+  std::uint64_t at = 0;
+  std::vector<const std::string*> order;
+  auto decl = [&](const std::string& attrs, const std::string& bytes) {
+    o << "      <DataArray " << attrs << " format=\"appended\" offset=\"" << at << "\"/>\n";
+    at += 8 + bytes.size();
+    order.push_back(&bytes);
+  };
+  o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\""
+    << (std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian")
+    << "\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"" << npoints
+    << "\" NumberOfCells=\"" << ncells << "\">\n";
+  for (bool cells : {false, true}) {
+    o << (cells ? "     <CellData Scalars=\"segment\">\n" : "     <PointData>\n");
+    for (const auto& a : arrays)
+      if (a.on_cells == cells) decl("type=\"" + std::string(a.type) + "\" Name=\"" + xml_escape(a.name) + "\"", a.bytes);
+    o << (cells ? "     </CellData>\n" : "     </PointData>\n");
+  }
+  o << "     <Points>\n";
+  decl("type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"", points);
+  o << "     </Points>\n     <Cells>\n";
+  decl("type=\"Int64\" Name=\"connectivity\"", conn);
+  decl("type=\"Int64\" Name=\"offsets\"", offsets);
+  decl("type=\"UInt8\" Name=\"types\"", types);
+  o << "     </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
+  for (const auto* b : order) {
+    std::string h;
+    append(h, static_cast<std::uint64_t>(b->size()));
+    o << h << *b;
+  }
+  o << "\n  </AppendedData>\n</VTKFile>\n";
+}
+
 }  // namespace
 
 template <std::size_t D>
@@ -143,40 +178,42 @@ void write_vtu(const domain<D>& d, const std::string& path) {
       append(types, static_cast<std::uint8_t>(D == 3 ? 10 : 5));  // VTK_TETRA, VTK_TRIANGLE
     }
 
-  atomic_file f(path);
-  auto& o = f.stream();
-  std::uint64_t at = 0;
-  std::vector<const std::string*> order;
-  auto decl = [&](const std::string& attrs, const std::string& bytes) {
-    o << "      <DataArray " << attrs << " format=\"appended\" offset=\"" << at << "\"/>\n";
-    at += 8 + bytes.size();
-    order.push_back(&bytes);
+  // the companion: boundary, interface and marked faces
+  const auto outer = detail::outer_facets(d, path);
+  const detail::marker_lookup<D> marker(d);
+  const auto inner = detail::inner_marked(d, outer);
+  std::string fconn, foffsets, ftypes, fmarker, fseg, fother;
+  off = 0;
+  auto face = [&](const std::array<vertex_id, D>& f, int m, int a, int b) {
+    for (auto v : f) append(fconn, static_cast<std::int64_t>(v));
+    append(foffsets, off += static_cast<std::int64_t>(D));
+    append(ftypes, static_cast<std::uint8_t>(D == 3 ? 5 : 3));  // VTK_TRIANGLE, VTK_LINE
+    append(fmarker, static_cast<std::int32_t>(m));
+    append(fseg, static_cast<std::int32_t>(a));
+    append(fother, static_cast<std::int32_t>(b));
   };
-  o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\""
-    << (std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian")
-    << "\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"" << pts.size()
-    << "\" NumberOfCells=\"" << ncells << "\">\n";
-  for (bool cells : {false, true}) {
-    o << (cells ? "     <CellData Scalars=\"segment\">\n" : "     <PointData>\n");
-    for (const auto& a : arrays)
-      if (a.on_cells == cells) decl("type=\"" + std::string(a.type) + "\" Name=\"" + xml_escape(a.name) + "\"", a.bytes);
-    o << (cells ? "     </CellData>\n" : "     </PointData>\n");
-  }
-  o << "     <Points>\n";
-  decl("type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"", points);
-  o << "     </Points>\n     <Cells>\n";
-  decl("type=\"Int64\" Name=\"connectivity\"", conn);
-  decl("type=\"Int64\" Name=\"offsets\"", offsets);
-  decl("type=\"UInt8\" Name=\"types\"", types);
-  o << "     </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
-  for (const auto* b : order) {
-    std::string h;
-    append(h, static_cast<std::uint64_t>(b->size()));
-    o << h << *b;
-  }
-  o << "\n  </AppendedData>\n</VTKFile>\n";
+  for (const auto& f : outer)
+    face(f.vertices, marker.empty() ? 0 : marker(f.vertices), segs[f.first].number(),
+         f.second < 0 ? 0 : segs[static_cast<std::size_t>(f.second)].number());
+  // a marked face inside a segment: the segment of one of its cells is not at hand here; 0, 0
+  for (const auto& [f, m] : inner) face(f, m, 0, 0);
+  const std::vector<data_array> farrays{{true, "marker", "Int32", 1, fmarker},
+                                        {true, "segment", "Int32", 1, fseg},
+                                        {true, "other_segment", "Int32", 1, fother}};
+
+  atomic_file f(path), fb(boundary_vtu_path(path));
+  write_grid(f.stream(), points, pts.size(), ncells, arrays, conn, offsets, types);
+  write_grid(fb.stream(), points, pts.size(), outer.size() + inner.size(), farrays, fconn, foffsets, ftypes);
   f.commit();
+  fb.commit();
 }
+
+std::string boundary_vtu_path(const std::string& path) {
+  const std::string e = ".vtu";
+  const bool has = path.size() >= e.size() && path.compare(path.size() - e.size(), e.size(), e) == 0;
+  return (has ? path.substr(0, path.size() - e.size()) : path) + ".boundary.vtu";
+}
+
 template void write_vtu<2>(const domain<2>&, const std::string&);
 template void write_vtu<3>(const domain<3>&, const std::string&);
 

@@ -438,6 +438,18 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     fo.too_far = o.too_far;
   }
   auto d = mesh_segments<D>{creating ? &fo : nullptr, &r.creation}(b, l, o.threads);
+  // the input's markers on the faces that lie on marked facets (every boundary face is a mesh
+  // face: the mesh conforms), for the writers
+  for (std::size_t f = 0; f < b.faces.size(); ++f) {
+    const std::size_t src = b.face_source[f];
+    int marker = 0;
+    if constexpr (D == 3)
+      marker = src < p.facets.size() ? p.facets[src].marker : 0;
+    else
+      marker = src < p.edge_markers.size() ? p.edge_markers[src] : 0;
+    if (marker != 0) d.marked_faces().push_back({b.faces[f], marker});
+  }
+  d.marker_names() = p.marker_names;
   lap("mesh");
   if (o.verify) {
     // against the input PLC itself, not the conformed boundary and labels the mesh was made from

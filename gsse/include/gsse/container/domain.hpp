@@ -1,7 +1,9 @@
 #pragma once
 // Default domain model: the global points and a list of named, numbered segments.
 #include <algorithm>
+#include <array>
 #include <deque>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -47,6 +49,19 @@ class domain {
       if (s.name() == name) return &s;
     return nullptr;
   }
+  /// Faces (3D: triangles; 2D: edges) of the mesh that lie on a marked input facet (2D: segment),
+  /// with that marker: data beside the topology, which the writers carry into every format
+  /// (docs/io.md). Faces on unmarked (marker 0) input facets are not listed.
+  struct marked_face {
+    std::array<vertex_id, D> vertices;
+    int marker;
+  };
+  std::vector<marked_face>& marked_faces() { return marked_; }
+  const std::vector<marked_face>& marked_faces() const { return marked_; }
+  /// Names of facet markers (from the input's sidecar, {"facets": {"77": "drain"}}).
+  std::map<int, std::string>& marker_names() { return marker_names_; }
+  const std::map<int, std::string>& marker_names() const { return marker_names_; }
+
   /// Propagates the point count to the segments' vertex-quantity slots (after bulk edits).
   void sync_slots() {
     for (auto& s : segments_) s.set_vertex_slots(points_.size());
@@ -55,6 +70,8 @@ class domain {
  private:
   std::vector<point_type> points_;
   std::deque<segment_type> segments_;  // deque: references stay valid as segments are added
+  std::vector<marked_face> marked_;
+  std::map<int, std::string> marker_names_;
 };
 
 }  // namespace gsse

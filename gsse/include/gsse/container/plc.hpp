@@ -5,6 +5,7 @@
 // number the segments of the domain; hole points mark regions that are not meshed.
 #include <array>
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,7 @@ struct plc {
   std::vector<int> edge_markers;                    // 2D
   std::vector<point<D>> holes;
   std::vector<plc_region<D>> regions;
+  std::map<int, std::string> marker_names;          // facet (2D: segment) marker -> name
 };
 
 }  // namespace gsse

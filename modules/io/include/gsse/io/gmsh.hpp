@@ -1,5 +1,5 @@
 #pragma once
-// Gmsh .msh version 4.1 (and 2.2 for reading), ASCII and binary. Physical groups of the top
+// Gmsh .msh version 4.1 and 2.2, ASCII and binary (2.2 written ASCII only). Physical groups of the top
 // dimension are the segments (physical tag = segment number, $PhysicalNames = segment name);
 // triangles make a 2D mesh, tetrahedra a 3D one; lower-dimensional elements are read and skipped.
 // A file without volume elements can also be read as a surface PLC (read_msh_plc).
@@ -33,10 +33,21 @@ std::variant<domain<2>, domain<3>> read_msh_any(const std::string& path);
 /// entities, a surface that is not closed (an edge in one face).
 plc<3> read_msh_plc(const std::string& path, std::vector<plc_volume>* volumes = nullptr);
 
-/// Writes .msh 4.1 (ASCII, or binary if `binary`): one entity and one named physical group per
-/// segment (tag = segment number), all nodes (tag = vertex id + 1) in one block, and one element
-/// block per segment in segment order. Cell vertex order is kept (Gmsh's positive orientation).
+enum class msh_version { v41, v22 };
+
+/// Writes .msh 4.1 (ASCII, or binary if `binary`) or 2.2 (ASCII; the version devsim reads):
+/// - one entity and one named physical group per segment (dimension D, tag = segment number), one
+///   element block per segment in segment order, cell vertex order kept (Gmsh's orientation);
+/// - the boundary, interface and marked faces (domain::marked_faces) as elements of dimension
+///   D-1 (triangles, 2D: lines), one entity per (marker, segment on each side); a physical group
+///   per nonzero facet marker (tag = the marker when positive, else after the others; name from
+///   domain::marker_names, else "facet_<marker>") and per interface between two segments (name
+///   "<first>:<second>", first = lower segment number; tags after the positive markers);
+/// - all nodes (tag = vertex id + 1) in one block.
+/// Faces in no group (unmarked outer boundary) are left out, as Gmsh leaves out elements without
+/// a physical group. In 2.2 a face is written once per physical group of its entity, with the
+/// same element number (Gmsh's own convention).
 template <std::size_t D>
-void write_msh(const domain<D>& d, const std::string& path, bool binary = false);
+void write_msh(const domain<D>& d, const std::string& path, bool binary = false, msh_version version = msh_version::v41);
 
 }  // namespace gsse::io

@@ -15,7 +15,14 @@ namespace gsse::io {
 ///  - every double/int cell quantity as cell data "<quantity>" when all segments with cells have
 ///    it with the same type, else "<segment>/<quantity>" with 0 on the other segments' cells.
 /// Quantities of other types are skipped. 2D points get z = 0.
+/// Beside it, boundary_vtu_path(path) (BASE.boundary.vtu): the same points and the boundary,
+/// interface and marked faces (triangles; 2D: lines) with cell data "marker" (the input facet's
+/// marker, 0 if none), "segment" (the segment the face is oriented into; the lower number at an
+/// interface) and "other_segment" (the segment on the other side, 0 outside; both 0 for a marked
+/// face inside a segment). Both files are written, or neither.
 template <std::size_t D>
 void write_vtu(const domain<D>& d, const std::string& path);
+/// BASE.boundary.vtu for BASE.vtu.
+std::string boundary_vtu_path(const std::string& path);
 
 }  // namespace gsse::io
