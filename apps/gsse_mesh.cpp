@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <fstream>
@@ -49,7 +50,7 @@ struct args {
   double size = 0;
   unsigned threads = 1;
   bool verify = false, quiet = false, no_merge = false, msh22 = false;
-  std::size_t max_steiner = 2'000'000;
+  std::size_t max_steiner = gsse::conformer::options{}.max_steiner;
 };
 
 template <std::size_t D>
@@ -63,6 +64,9 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.verify = a.verify;
   o.conform.max_steiner = a.max_steiner;
   o.conform.merge_coplanar = !a.no_merge;
+  // GSSE_CONFORM_TRACE=1: the conformer's rounds on stderr (the library prints nothing itself)
+  if (const char* t = std::getenv("GSSE_CONFORM_TRACE"); t && std::string(t) != "0" && *t)
+    o.conform.trace = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   gsse::rules::rule_set custom;
   if (!a.rules.empty()) {
     custom = gsse::rules::load_rules(a.rules);

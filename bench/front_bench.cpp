@@ -1,11 +1,15 @@
 // Front mesher throughput against CGAL's Delaunay_triangulation_3 on the same points.
-// usage: front_bench N [gsse|gsse2|cgal|both]   (one method per process for a clean peak-memory figure)
+// usage: front_bench N [gsse|gsse2|cgal|both]   (one method per process for a clean peak-memory figure;
+// `both` also compares the two tetrahedrizations, cell for cell: "identical": true or false)
 // gsse: one thread; gsse2: two threads, the cube halved by a DeWall wall (x = 0.5) whose two
 // sides are meshed concurrently, as the pipeline splits large segments.
 // Points: 8 cube corners + N uniform points in the unit cube (seed 1). Prints one JSON line.
 #include <sys/resource.h>
 
 #include <CGAL/Delaunay_triangulation_3.h>
+
+#include <algorithm>
+#include <map>
 
 #include <chrono>
 #include <cstdio>
@@ -44,6 +48,7 @@ int main(int argc, char** argv) {
   for (int i = 0; i < 8; ++i) p.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
   for (std::size_t i = 0; i < n; ++i) p.push_back({u(rng), u(rng), u(rng)});
   const double base_mb = peak_mb();
+  std::vector<std::array<vertex_id, 4>> cells;  // GSSE's, kept for the comparison of `both`
   std::printf("{\"points\": %zu", p.size());
   if (which == "gsse" || which == "gsse2" || which == "both") {
     // the cube's boundary: each face split along its perturbed-Delaunay diagonal
@@ -71,7 +76,6 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     const auto grid = front::make_grid(p);
     front::wrap_stats st;
-    std::vector<std::array<vertex_id, 4>> cells;
     if (which == "gsse2") {
       std::array<std::vector<std::array<vertex_id, 3>>, 2> sides;
       cells = front::wrap_wall(p, grid, boundary, "cube", 0, 0.5, sides);
@@ -103,6 +107,24 @@ int main(int argc, char** argv) {
     std::printf(", \"cgal\": {\"tets\": %zu, \"seconds\": %.3f, \"tets_per_s\": %.0f, \"peak_mb\": %.1f}",
                 static_cast<std::size_t>(dt.number_of_finite_cells()), s,
                 static_cast<double>(dt.number_of_finite_cells()) / s, peak_mb());
+    if (which == "both") {  // cell for cell, vertices mapped back by their (distinct) coordinates
+      std::map<std::array<double, 3>, vertex_id> id;
+      for (std::size_t i = 0; i < p.size(); ++i) id[p[i]] = static_cast<vertex_id>(i);
+      std::vector<std::array<vertex_id, 4>> theirs, ours = cells;
+      for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+        std::array<vertex_id, 4> t;
+        for (int k = 0; k < 4; ++k) {
+          const auto& q = c->vertex(k)->point();
+          t[static_cast<std::size_t>(k)] = id.at({q.x(), q.y(), q.z()});
+        }
+        theirs.push_back(t);
+      }
+      for (auto* v : {&ours, &theirs}) {
+        for (auto& t : *v) std::sort(t.begin(), t.end());
+        std::sort(v->begin(), v->end());
+      }
+      std::printf(", \"identical\": %s", ours == theirs ? "true" : "false");
+    }
   }
   std::printf("}\n");
   return 0;

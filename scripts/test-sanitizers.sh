@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer and UndefinedBehaviorSanitizer: a second build in
 # ./build-san (-O1 -g, assertions on, every UB report fatal) and its ctest run. The libFuzzer
-# tests are left out (their targets are sanitizer builds of their own, run by scripts/test.sh);
+# tests are left out (their targets are sanitizer builds of their own, run by scripts/test.sh), and
+# so are the install and Python tests (a consumer or an interpreter built without the sanitizers
+# cannot load their libraries);
 # everything else runs, the corpus too, with a longer per-run timeout (the sanitizers cost 2-4x).
 # GSSE_SAN_CTEST_ARGS adds ctest arguments (e.g. "-LE corpus" locally).
 set -euo pipefail
@@ -13,4 +15,4 @@ cmake --build build-san -j "${GSSE_JOBS:-2}"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 export GSSE_CORPUS_TIMEOUT=${GSSE_CORPUS_TIMEOUT:-300}
-cd build-san && ctest --output-on-failure -j "${GSSE_JOBS:-2}" -LE fuzz ${GSSE_SAN_CTEST_ARGS:-}
+cd build-san && ctest --output-on-failure -j "${GSSE_JOBS:-2}" -LE "fuzz|install|python" ${GSSE_SAN_CTEST_ARGS:-}

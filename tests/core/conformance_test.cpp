@@ -5,6 +5,16 @@
 #include "support/fixtures.hpp"
 #include "support/legacy_mesh.hpp"
 
+#include <boost/fusion/include/adapt_struct.hpp>
+
+// a research code's point struct, float coordinates, adapted for GSSE by one macro
+namespace research {
+struct node {
+  float x, y, z;
+};
+}  // namespace research
+BOOST_FUSION_ADAPT_STRUCT(research::node, x, y, z)
+
 using namespace gsse;
 
 namespace {
@@ -21,6 +31,14 @@ legacy::mesh<D> to_legacy(std::array<int, D> n, double split) {
   return m;
 }
 }  // namespace
+
+BOOST_AUTO_TEST_CASE(fusion_adapted_points_are_added_as_they_are) {
+  gsse::domain<3> d;
+  const research::node n{0.5f, -1.25f, 3.0f};
+  const auto v = d.add_point(n);
+  BOOST_TEST((d.position(v) == gsse::point3{0.5, -1.25, 3.0}));
+  static_assert(gsse::fusion_point<research::node, 3> && !gsse::fusion_point<research::node, 2>);
+}
 
 BOOST_AUTO_TEST_CASE(default_model_2d) {
   auto d = test::make_two_segment_domain<2>({4, 3}, 2.0);

@@ -1,6 +1,8 @@
 #define BOOST_TEST_MODULE predicates
 #include <boost/test/unit_test.hpp>
 
+#include <cmath>
+
 #include <algorithm>
 #include <map>
 #include <set>
@@ -108,10 +110,37 @@ BOOST_AUTO_TEST_CASE(exact_signs) {
   BOOST_TEST(in_equatorial(o, x, y, point3{0.5, 0.5, 0.70}) == 1);
   BOOST_TEST(in_equatorial(o, x, y, point3{0.5, 0, 0.5}) == 0);
   BOOST_TEST(in_equatorial(o, x, y, point3{0.5, 0.5, 0.71}) == -1);
-  // a nearly degenerate case that naive double evaluation gets wrong
+  // nearly degenerate input (24 + 24e-17 rounds to 24, so this one is exactly collinear as
+  // stored; orient2d_where_doubles_fail below has cases that plain doubles do get wrong)
   const double e = 1e-17;
   BOOST_TEST(orient2d(point2{0.5, 0.5}, point2{12, 12}, point2{24, 24 + 24 * e}) == 0);
   BOOST_TEST(orient2d(point2{0.5, 0.5}, point2{12, 12}, point2{24, std::nextafter(24.0, 25.0)}) == 1);
+}
+
+// Kettner et al., "Classroom examples of robustness problems in geometric computations": points
+// p = (0.5 + i u, 0.5 + j u), u = 2^-53, against the line through (12, 12) and (24, 24). Scaled by
+// 2^53 every coordinate is an integer below 2^58, so the sign is computed exactly in 128-bit
+// integers here (an oracle sharing nothing with CGAL). The naive double formula gets hundreds of
+// the 256 x 256 signs wrong; the predicate gets none.
+BOOST_AUTO_TEST_CASE(orient2d_where_doubles_fail) {
+  const double u = std::ldexp(1.0, -53);
+  const point2 q{12, 12}, r{24, 24};
+  auto scaled = [](double x) { return static_cast<__int128>(std::ldexp(x, 53)); };
+  int naive_wrong = 0, wrong = 0;
+  for (int i = 0; i < 256; ++i)
+    for (int j = 0; j < 256; ++j) {
+      const point2 p{0.5 + i * u, 0.5 + j * u};
+      const __int128 det = (scaled(q[0]) - scaled(p[0])) * (scaled(r[1]) - scaled(p[1])) -
+                           (scaled(q[1]) - scaled(p[1])) * (scaled(r[0]) - scaled(p[0]));
+      const int exact = det > 0 ? 1 : det < 0 ? -1 : 0;
+      // the orientation of (p, q, r) is that of (q - p) x (r - p)
+      const double nd = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+      naive_wrong += (nd > 0 ? 1 : nd < 0 ? -1 : 0) != exact;
+      wrong += orient2d(p, q, r) != exact;
+    }
+  BOOST_TEST_MESSAGE("naive doubles: " << naive_wrong << " wrong signs of 65536");
+  BOOST_TEST(naive_wrong > 100);  // the case is hard: plain doubles fail on it
+  BOOST_TEST(wrong == 0);
 }
 
 BOOST_AUTO_TEST_CASE(cube_corners) {

@@ -22,4 +22,13 @@ want=$("$tmp/prefix/bin/gsse-mesh" "$src/examples/mosfet.poly" --size 0.1 --stat
        /usr/bin/python3 -c "import json; d=json.load(open('$tmp/s.json')); print(d['points'], sum(s['cells'] for s in d['segments']), 0)")
 echo "consumer: $got; installed gsse-mesh: $want"
 [ "$got" = "$want" ] || { echo "FAIL: the consumer's mesh differs"; exit 1; }
+# the Python module, installed beside the libraries
+if [ -d "$build/python" ]; then
+  py=$(ls "$tmp/prefix"/lib/python3/dist-packages/gsse*.so 2>/dev/null | head -1)
+  [ -n "$py" ] || { echo "FAIL: the Python module was not installed"; exit 1; }
+  n=$(cd "$tmp" && PYTHONPATH="$tmp/prefix/lib/python3/dist-packages" /usr/bin/python3 -c \
+      "import gsse; print(len(gsse.mesh_file('$src/examples/mosfet.poly', size=0.1).points))")
+  [ "$n" = "${got%% *}" ] || { echo "FAIL: the installed Python module gives $n points"; exit 1; }
+  echo "installed Python module: $n points"
+fi
 echo "ok"

@@ -11,6 +11,7 @@ areas (2D: lengths) sum to the facet's, and every one of their vertices lies in 
   "<a>:<b>" holding exactly the faces shared by cells of segments a and b (found by brute force
   from the cells); 2.2's header is "2.2 0 8", as devsim's reader requires;
 - .vtu: meshio reads BASE.boundary.vtu, cell data "marker".
+And a Gmsh model whose top surface is a named physical group keeps the group, named, in the output.
 
 usage: markers.py GSSE_MESH SOURCE_DIR"""
 import json
@@ -185,11 +186,40 @@ def run_case(mesh, src, work, dim):
     covers(pts, facets[0], [b.points[f][:, :dim] for f in faces[marker == 77]], f"{dim}D .boundary.vtu (meshio) marker 77")
 
 
+def gmsh_surface_case(mesh, work):
+    """A Gmsh model: a unit box whose top surface is the physical group "top_contact" (tag 5),
+    surface-meshed by Gmsh; meshed by gsse-mesh, the output .msh has that group, covering the top."""
+    gmsh.initialize()
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.occ.addBox(0, 0, 0, 1, 1, 1)
+    gmsh.model.occ.synchronize()
+    top = [t for d, t in gmsh.model.getEntities(2) if abs(gmsh.model.occ.getCenterOfMass(2, t)[2] - 1) < 1e-9]
+    gmsh.model.addPhysicalGroup(2, top, 5)
+    gmsh.model.setPhysicalName(2, 5, "top_contact")
+    gmsh.model.addPhysicalGroup(3, [1], 1)
+    gmsh.model.setPhysicalName(3, 1, "bulk")
+    gmsh.option.setNumber("Mesh.SaveAll", 1)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", 0.5)
+    gmsh.model.mesh.generate(2)
+    src = os.path.join(work, "box.msh")
+    gmsh.write(src)
+    gmsh.finalize()
+    out = os.path.join(work, "box_out.msh")
+    r = subprocess.run([mesh, src, "--size", "0.25", "--quiet", "-o", out], capture_output=True, text=True)
+    check(r.returncode == 0, f"Gmsh surface model with a named surface group meshed {r.stderr.strip()}")
+    groups, nodes = gmsh_groups(out, 3)
+    faces = [np.array([nodes[v] for v in f]) for f in groups.get((2, "top_contact"), [])]
+    area = sum(face_measure(x) for x in faces)
+    check(len(faces) > 1 and abs(area - 1) < 1e-9 and all(abs(q[2] - 1) < 1e-12 for x in faces for q in x),
+          f"Gmsh model: output group top_contact, {len(faces)} faces of area {area:.12g} on the top; volumes {sorted(n for d, n in groups if d == 3)}")
+
+
 def main():
     mesh, src = sys.argv[1], sys.argv[2]
     with tempfile.TemporaryDirectory(prefix="gsse_markers_") as work:
         for dim in (3, 2):
             run_case(mesh, src, work, dim)
+        gmsh_surface_case(mesh, work)
     return 1 if failures else 0
 
 

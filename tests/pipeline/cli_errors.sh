@@ -89,5 +89,23 @@ expect "$work/ok.poly" "--size must be positive" --size -1
 printf '2 3 0 0\n1 0.5 0.5 0.5\n2 0.5 0.5 0.5\n' > "$work/cloud.node"; expect "$work/ok.poly" "duplicate point" --cloud "$work/cloud.node"
 printf 'dimension 3\nsplit x\n element subfacet\nend\n' > "$work/bad.rules"; expect "$work/ok.poly" "bad.rules:2: split rule 'x': missing 'relation'" --rules "$work/bad.rules"
 expect "$work/ok.poly" "a 2D rule set for a 3D input" --rules "$src/rules/conformer2d.rules"
+expect "$work/ok.poly" "--threads must be a whole number from 1 to 4096, not '-1'" --threads -1
+expect "$work/ok.poly" "--threads must be a whole number from 1 to 4096, not '0'" --threads 0
+expect "$work/ok.poly" "--msh must be 4.1 or 2.2, not '3'" --msh 3
+mkdir "$work/ok.json"; expect "$work/ok.poly" "ok.json: cannot read the sidecar file"; rmdir "$work/ok.json"
+# an unknown output format is refused before meshing (this size would take minutes to mesh)
+n=$((n + 1))
+t0=$(date +%s%N); msg=$(timeout 60 "$mesh" "$work/ok.poly" --size 0.002 -o "$work/x.obj" --quiet 2>&1); rc=$?
+ms=$((($(date +%s%N) - t0) / 1000000))
+if [ $rc -eq 0 ] || [[ "$msg" != *"unknown output format '.obj'"* ]] || [ $ms -gt 5000 ] || [ -e "$work/x.obj" ]; then
+  echo "FAIL: unknown output format: exit $rc after $ms ms: $msg"; fail=1
+else echo "ok: unknown output format refused in $ms ms: ${msg%%$'\n'*}"; fi
+# the conformer's trace goes through the CLI: on with GSSE_CONFORM_TRACE=1, off with 0 or unset
+n=$((n + 1))
+on=$(GSSE_CONFORM_TRACE=1 "$mesh" "$work/ok.poly" --quiet 2>&1 | grep -c "^conform round")
+off=$(GSSE_CONFORM_TRACE=0 "$mesh" "$work/ok.poly" --quiet 2>&1 | grep -c "^conform round")
+unset_=$(env -u GSSE_CONFORM_TRACE "$mesh" "$work/ok.poly" --quiet 2>&1 | grep -c "^conform round")
+if [ "$on" -ge 1 ] && [ "$off" = 0 ] && [ "$unset_" = 0 ]; then echo "ok: trace: $on round lines with GSSE_CONFORM_TRACE=1, none with 0 or unset"
+else echo "FAIL: trace lines: $on with 1, $off with 0, $unset_ unset"; fail=1; fi
 [ $fail = 0 ] && echo "$n passed, 0 failed" || echo "some cases FAILED"
 exit $fail

@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "gsse/io/node_ele.hpp"
+#include "gsse/io/vtu.hpp"
+#include "gsse/io/gmsh.hpp"
 #include "gsse/io/poly.hpp"
 #include "gsse/pipeline/pipeline.hpp"
 #include "gsse/topology/incidence.hpp"
@@ -72,26 +74,38 @@ BOOST_AUTO_TEST_CASE(finer_size_gives_more_elements) {
   BOOST_TEST(fine > 4 * coarse);  // about 8x in 3D
 }
 
-BOOST_AUTO_TEST_CASE(output_is_identical_for_1_and_2_threads) {
-  const auto p = io::read_tetgen_poly(example("mosfet"));
-  const auto dir = std::filesystem::temp_directory_path() / "gsse_determinism";
+// "Byte-identical for any thread count": the sized 3D MOSFET and the 2D MOSFET meshed and
+// written with 1, 2, 3 and 8 threads (the .node/.ele/.face writer and .msh and .vtu included),
+// every byte compared with the 1-thread run.
+template <std::size_t D>
+void identical_for_thread_counts(const plc<D>& p, double size, const std::string& tag) {
+  const auto dir = std::filesystem::temp_directory_path() / ("gsse_determinism_" + tag);
   std::filesystem::create_directories(dir);
   pl::options o;
-  o.size = 0.05;
+  o.size = size;
   std::string first;
-  for (unsigned t : {1u, 2u}) {
+  for (unsigned t : {1u, 2u, 3u, 8u}) {
     o.threads = t;
     pl::report r;
     const auto d = pl::mesh(p, {}, o, r);
     const auto base = (dir / ("t" + std::to_string(t))).string();
-    io::write_node_ele(d, base);
-    const auto bytes = slurp(base + ".node") + slurp(base + ".ele") + slurp(base + ".face");
-    BOOST_TEST(bytes.size() > 1000u);
+    io::write_node_ele(d, base, t);
+    io::write_msh(d, base + ".msh");
+    io::write_vtu(d, base + ".vtu");
+    const auto bytes = slurp(base + ".node") + slurp(base + ".ele") + slurp(base + (D == 3 ? ".face" : ".edge")) +
+                       slurp(base + ".msh") + slurp(base + ".vtu") + slurp(base + ".boundary.vtu");
+    BOOST_TEST(bytes.size() > 10000u);
     if (t == 1)
       first = bytes;
     else
-      BOOST_TEST((bytes == first));
+      BOOST_TEST((bytes == first), tag << ": " << t << " threads differ from 1");
   }
+  std::filesystem::remove_all(dir);
+}
+
+BOOST_AUTO_TEST_CASE(output_is_identical_for_1_2_3_and_8_threads) {
+  identical_for_thread_counts(io::read_tetgen_poly(example("mosfet")), 0.05, "3d");
+  identical_for_thread_counts(io::read_triangle_poly(example("mosfet2d")), 0.01, "2d");
 }
 
 BOOST_AUTO_TEST_CASE(a_research_code_replaces_one_stage) {

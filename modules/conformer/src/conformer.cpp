@@ -1584,11 +1584,11 @@ class state3 : public state<3> {
       triangulate_all(changed);
       for (auto f : changed) seen[f] = vertex_count(f);
       const std::size_t facet_splits = conform_facets(flat_pairs(changed));
-      if (trace)
-        std::fprintf(stderr, "conform round %zu: %zu subsegment splits, %zu subfacet splits, %zu points\n", out_.rounds,
-                     seg_splits, facet_splits, out_.points.size());
       if (trace) {
-        for (auto& [k, n] : trace_) std::fprintf(stderr, "   %s %zu\n", k.c_str(), n);
+        opt_.trace("conform round " + std::to_string(out_.rounds) + ": " + std::to_string(seg_splits) +
+                   " subsegment splits, " + std::to_string(facet_splits) + " subfacet splits, " +
+                   std::to_string(out_.points.size()) + " points");
+        for (auto& [k, n] : trace_) opt_.trace("   " + k + " " + std::to_string(n));
         trace_.clear();
       }
       if (facet_splits == 0) break;

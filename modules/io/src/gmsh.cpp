@@ -712,6 +712,8 @@ plc<3> read_msh_plc(const std::string& path, std::vector<plc_volume>* volumes) {
   if (element_at.empty()) throw io_error::whole(path, "no triangles or quadrangles: nothing to read as a surface");
   plc<3> out;
   out.source = path;
+  for (const auto& [dt, name] : m.names)  // surface groups name the facet markers they give
+    if (dt.first == 2) out.marker_names[dt.second] = name;
   std::vector<vertex_id> id(m.nodes.size(), no_vertex);
   std::vector<std::size_t> node_of;  // node index of each point
   for (std::size_t i = 0; i < m.nodes.size(); ++i)
@@ -728,9 +730,14 @@ plc<3> read_msh_plc(const std::string& path, std::vector<plc_volume>* volumes) {
   });
   const auto lines = m.binary ? std::vector<std::size_t>(element_at.size(), 0) : lines_of(data, element_at);
   std::map<int, std::vector<std::size_t>> facets_of;  // surface entity -> its facets
+  // a surface without a physical group is marked by its entity tag, negated where the file has
+  // surface groups: a group's tag (a contact, say) must not collide with another surface's tag
+  bool grouped = false;
+  for (const auto& b : m.blocks)
+    if (auto it = m.physicals.find({2, b.entity}); it != m.physicals.end() && !it->second.empty()) grouped = true;
   for (const auto& b : m.blocks) {
     const std::size_t per = b.type == 2 ? 3 : 4;
-    int marker = b.entity;
+    int marker = grouped ? -b.entity : b.entity;
     if (auto it = m.physicals.find({2, b.entity}); it != m.physicals.end() && !it->second.empty()) marker = it->second.front();
     auto& mine = facets_of[b.entity];
     for (std::size_t k = 0; k + per <= b.conn.size(); k += per) {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "gsse/container/segment.hpp"
@@ -25,6 +26,13 @@ class domain {
     points_.push_back(p);
     sync_slots();
     return static_cast<vertex_id>(points_.size() - 1);
+  }
+  /// A research code's own point type, adapted with BOOST_FUSION_ADAPT_STRUCT (its D members in
+  /// order x, y[, z]; see gsse/geometry/point.hpp), added as it is.
+  template <class P>
+    requires fusion_point<P, D> && (!std::is_same_v<std::remove_cvref_t<P>, point_type>)
+  vertex_id add_point(const P& p) {
+    return add_point(to_point<D>(p));
   }
   void reserve_points(std::size_t n) { points_.reserve(n); }
   std::vector<point_type>& mutable_points() { return points_; }

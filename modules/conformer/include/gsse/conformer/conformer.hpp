@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <stdexcept>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,10 @@ struct options {
   const rules::rule_set* rules = nullptr;  // nullptr: the embedded default conformer rules
   unsigned threads = 1;                    // subfacet encroachment checks run in parallel
   bool merge_coplanar = true;  // 3D: merge coplanar facets of one marker (see gsse/plc/facet_regions.hpp)
+  // receives, per conformer round, the number of splits and which rule and action fired how
+  // often (one line each); empty: no trace. The library prints nothing itself (gsse-mesh passes
+  // one that prints to stderr when GSSE_CONFORM_TRACE=1).
+  std::function<void(const std::string&)> trace;
 };
 
 /// Where a vertex lies: on a PLC vertex, on a PLC edge, inside a facet (3D), or free (volume).

@@ -23,7 +23,8 @@ std::variant<domain<2>, domain<3>> read_msh_any(const std::string& path);
 
 /// Reads a Gmsh surface mesh (4.1 or 2.2, ASCII or binary, e.g. `gmsh -2 -save_all`) as a PLC:
 /// every triangle and quadrangle (one polygon) of a surface entity is a facet whose marker is the
-/// surface's first physical tag, else its entity tag. Points are the nodes used by these
+/// surface's first physical tag (named, in plc::marker_names, by the group's $PhysicalNames
+/// entry), else its entity tag, negated when the file has surface physical groups. Points are the nodes used by these
 /// elements, in file order. Each volume entity of $Entities (4.1) becomes a plc_volume in file
 /// order: number = its first physical tag (volumes sharing one form one segment), else its entity
 /// tag; name from $PhysicalNames, else "region_<n>"; facets = those of its bounding surfaces.

@@ -25,7 +25,7 @@ struct options {
   double size = 0;       // target element size H; 0: no sizing (boundary conforming only)
   fill interior = fill::lattice;
   const rules::front_rule_set* front_rules = nullptr;  // fill::rules; nullptr: the embedded default
-  double too_far = 0.8;  // fill::rules: create points for faces whose apex ball exceeds too_far*H
+  double too_far = front::creation_options{}.too_far;  // fill::rules: create points for faces whose apex ball exceeds too_far*H
   unsigned threads = 1;  // threads for the per-segment meshing
   bool verify = false;   // run the library verifier (gsse::verify::check against the input PLC) at the end
   conformer::options conform{};
