@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# Documented CLI behaviours, each checked against an independent reading of the output:
+#  --stats      its counts equal those of the written .node/.ele (read here);
+#  --max-steiner  a cap the job needs more than ends with exit 1, a message naming the cap, no file;
+#  --rules      split rules replace the conformer's: with a set whose every rule is `midpoint`, the
+#               conformer's trace shows midpoint splits only, where the defaults project and rotate;
+#  hole points  a volume hole point empties its cell: the tetrahedra's volume is the cube's minus
+#               the inner box's (computed here from .node/.ele);
+#  --verify     PASS on a good mesh, exit 0 (a failing verification, exit 3 and nothing written,
+#               needs a broken mesher: tests/verify checks the verifier on corrupted meshes).
+# usage: cli_behaviour.sh GSSE_MESH SOURCE_DIR
+set -uo pipefail
+mesh=$1; src=$2
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+fail=0
+ok() { echo "ok: $*"; }
+bad() { echo "FAIL: $*"; fail=1; }
+py=/usr/bin/python3; [ -x $py ] || py=python3
+# a unit cube with a box [0.3, 0.7]^3 inside, region 1 outside it and (optionally) a hole inside
+box_poly() {  # file, "hole" or "region"
+  $py - "$1" "$2" <<'PY'
+import sys
+path, inner = sys.argv[1], sys.argv[2]
+def box(lo, hi, first):
+    P = [(x, y, z) for z in (lo, hi) for y in (lo, hi) for x in (lo, hi)]
+    F = [(0, 1, 3, 2), (4, 5, 7, 6), (0, 1, 5, 4), (2, 3, 7, 6), (0, 2, 6, 4), (1, 3, 7, 5)]
+    return P, [tuple(first + i + 1 for i in f) for f in F]
+P1, F1 = box(0.0, 1.0, 0)
+P2, F2 = box(0.3, 0.7, 8)
+with open(path, "w") as f:
+    f.write(f"16 3 0 0\n" + "".join(f"{i+1} {p[0]} {p[1]} {p[2]}\n" for i, p in enumerate(P1 + P2)))
+    f.write("12 0\n" + "".join("1\n4 %d %d %d %d\n" % q for q in F1 + F2))
+    if inner == "hole":
+        f.write("1\n1 0.5 0.5 0.5\n1\n1 0.1 0.1 0.1 1 -1\n")
+    else:
+        f.write("0\n2\n1 0.1 0.1 0.1 1 -1\n2 0.5 0.5 0.5 2 -1\n")
+PY
+}
+volume() {  # base: total volume of the tetrahedra of BASE.node/.ele
+  $py - "$1" <<'PY'
+import sys
+b = sys.argv[1]
+rows = lambda f: [l.split() for l in open(f) if l.strip() and not l.startswith("#")][1:]
+P = {int(r[0]): tuple(map(float, r[1:4])) for r in rows(b + ".node")}
+v = 0.0
+for r in rows(b + ".ele"):
+    a, b_, c, d = (P[int(x)] for x in r[1:5])
+    u = [b_[k] - a[k] for k in range(3)]; w = [c[k] - a[k] for k in range(3)]; z = [d[k] - a[k] for k in range(3)]
+    v += abs(u[0] * (w[1] * z[2] - w[2] * z[1]) - u[1] * (w[0] * z[2] - w[2] * z[0]) + u[2] * (w[0] * z[1] - w[1] * z[0])) / 6
+print(f"{v:.12f}")
+PY
+}
+count() { awk '!/^#/ && NF { print $1; exit }' "$1"; }
+
+# --stats against the files
+box_poly "$work/box.poly" region
+"$mesh" "$work/box.poly" --size 0.2 --quiet -o "$work/m.node" --stats "$work/s.json" || bad "box did not mesh"
+read -r sp sc < <($py -c "import json; d=json.load(open('$work/s.json')); print(d['points'], sum(s['cells'] for s in d['segments']))")
+if [ "$sp" = "$(count "$work/m.node")" ] && [ "$sc" = "$(count "$work/m.ele")" ] && [ "$sp" -gt 16 ]; then
+  ok "--stats: $sp points and $sc cells, as in m.node and m.ele"
+else bad "--stats says $sp points, $sc cells; files have $(count "$work/m.node"), $(count "$work/m.ele")"; fi
+
+# --max-steiner
+rm -f "$work/cap.node"
+msg=$("$mesh" "$work/box.poly" --size 0.05 --max-steiner 10 --quiet -o "$work/cap.node" 2>&1); rc=$?
+if [ $rc = 1 ] && [[ "$msg" == *"more than 10 "* ]] && [ ! -e "$work/cap.node" ]; then ok "--max-steiner 10: exit 1, '$msg'"
+else bad "--max-steiner 10: exit $rc, '$msg'"; fi
+
+# --rules: every split rule midpoint
+sed -E 's/^  try (shell|project|rotate-vertex|rotate-edge).*$//' "$src/rules/conformer3d.rules" > "$work/midpoint.rules"
+trace_actions() { GSSE_CONFORM_TRACE=1 "$mesh" "$work/box.poly" --quiet "$@" 2>&1 | awk '/^   / { split($1, a, "/"); print a[3] }' | sort -u | tr '\n' ' '; }
+default=$(trace_actions)
+custom=$(trace_actions --rules "$work/midpoint.rules")
+if [ "$custom" = "midpoint " ] && [ "$default" != "midpoint " ] && [ -n "$default" ]; then
+  ok "--rules: actions fired with the defaults: $default; with an all-midpoint set: $custom"
+else bad "--rules: defaults fired '$default', the all-midpoint set '$custom'"; fi
+
+# volume hole point
+box_poly "$work/hole.poly" hole
+"$mesh" "$work/hole.poly" --quiet -o "$work/h.node" || bad "holed box did not mesh"
+v=$(volume "$work/h"); want=$(echo "1 - 0.4^3" | bc -l)
+if $py -c "import sys; sys.exit(0 if abs($v - $want) < 1e-12 else 1)"; then ok "hole point: tetrahedra volume $v = 1 - 0.4^3"
+else bad "hole point: volume $v, expected $want"; fi
+v2=$(volume "$work/m")
+if $py -c "import sys; sys.exit(0 if abs($v2 - 1) < 1e-12 else 1)"; then ok "without the hole: volume $v2"; else bad "volume $v2"; fi
+
+# --verify PASS
+out=$("$mesh" "$work/box.poly" --size 0.2 --verify -o "$work/v.vtu" 2>&1); rc=$?
+if [ $rc = 0 ] && [[ "$out" == *"verify: PASS"* ]] && [ -e "$work/v.vtu" ]; then ok "--verify: PASS, exit 0, output written"
+else bad "--verify: exit $rc"; fi
+exit $fail
