@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Independent check of our writers: meshio reads the .vtu and .msh files io_write_samples wrote
 and must find the point and cell counts and the segment number of every cell ("segment" cell
-data in .vtu, "gmsh:physical" in .msh). In a .msh, the faces of dimension D-1 must be exactly
+data in .vtu, "gmsh:physical" in .msh), every cell positively oriented (vertex order kept), and in
+the .vtu the quantity values io_write_samples set (a potential that is a function of the
+coordinates, each cell's signed volume, recomputed here). In a .msh, the faces of dimension D-1 must be exactly
 the interface faces between the two segments (found here by brute force from the cells), in one
 physical group named "<first>:<second>"; the .vtu's companion BASE.boundary.vtu must list every
 face of the segments' boundaries once. Then meshio writes a binary .msh 4.1 of its own, and
@@ -53,9 +55,11 @@ def main():
             got = [tuple(sorted(int(v) for v in f)) for k in faces for f in m.cells[k].data]
             tags = {int(t) for k in faces for t in m.cell_data["gmsh:physical"][k]}
             names = {int(v[0]): n for n, v in m.field_data.items() if int(v[1]) == dim - 1}
-            faces_ok = sorted(got) == sorted(interface) and len(tags) == 1 and ":" in names.get(tags.pop(), "")
+            e = m.points[cells[:, 1:]][:, :, :dim] - m.points[cells[:, :1]][:, :, :dim]
+            positive = np.all(np.linalg.det(e) > 0)  # the cells' vertex order (orientation) kept
+            faces_ok = sorted(got) == sorted(interface) and len(tags) == 1 and ":" in names.get(tags.pop(), "") and positive
             print(f"{'ok  ' if faces_ok else 'FAIL'} {os.path.basename(path)}: {len(got)} faces of dimension {dim - 1}, "
-                  f"{len(interface)} interface faces by brute force, groups {sorted(names.values())}")
+                  f"{len(interface)} interface faces by brute force, groups {sorted(names.values())}, cells positive: {positive}")
             failures += not faces_ok
         else:
             b = meshio.read(path.replace(".vtu", ".boundary.vtu"))
@@ -68,6 +72,20 @@ def main():
         if path.endswith(".vtu"):
             names = sorted(m.point_data)
             ok = ok and "silicon/potential" in names and "volume" in m.cell_data
+            # values (write_samples.cpp): silicon's potential x + 2y (+ 3z), oxide's 0.5 but its
+            # number (2) at vertex 0, and each cell's signed volume, recomputed here
+            x = m.points
+            want = x[:, 0] + 2 * x[:, 1] + 3 * x[:, 2] if dim == 3 else x[:, 0] + 2 * x[:, 1]
+            ox = np.full(len(x), 0.5)
+            ox[0] = 2
+            vol = np.concatenate([m.cell_data["volume"][k] for k in blocks])
+            e = x[cells[:, 1:]] - x[cells[:, :1]]
+            signed = (np.linalg.det(e) / 6 if dim == 3 else (e[:, 0, 0] * e[:, 1, 1] - e[:, 0, 1] * e[:, 1, 0]) / 2)
+            values_ok = (np.array_equal(m.point_data["silicon/potential"], want) and np.array_equal(m.point_data["oxide/potential"], ox)
+                         and np.allclose(vol, signed, rtol=1e-14, atol=0) and np.all(signed > 0))
+            print(f"{'ok  ' if values_ok else 'FAIL'} {os.path.basename(path)}: quantity values, and cell volumes "
+                  f"{signed.min():.4g}..{signed.max():.4g} (all positive) as written")
+            failures += not values_ok
         print(f"{'ok  ' if ok else 'FAIL'} {os.path.basename(path)}: {len(m.points)} points, {got_cells} cells, "
               f"{key} runs {[(int(v), int((seg == v).sum())) for v in dict.fromkeys(seg.tolist())]}")
         failures += not ok

@@ -26,10 +26,33 @@ gsse::domain<D> sample() {
   d.segments()[0].set_number(4);
   d.segments()[1].set_name("oxide");
   d.segments()[1].set_number(2);
+  // values the reader can check: silicon's potential is x + 2y (+ 3z) at every vertex, oxide's
+  // 0.5 but its segment number at vertex 0; each cell's "volume" is its signed volume (area in
+  // 2D), so coordinates, connectivity, orientation and cell data are checked together
   for (auto& s : d.segments()) {
     auto q = gsse::add_quantity<double>(s, gsse::on_vertices, "potential", 0.5);
-    gsse::values(s, q)[0] = static_cast<double>(s.number());
-    gsse::add_quantity<double>(s, gsse::on_cells, "volume", 1.0);
+    auto pv = gsse::values(s, q);
+    if (s.name() == "silicon")
+      for (std::size_t v = 0; v < d.points().size(); ++v) {
+        const auto& x = d.points()[v];
+        pv[v] = D == 3 ? x[0] + 2 * x[1] + 3 * x[D - 1] : x[0] + 2 * x[1];
+      }
+    else
+      pv[0] = static_cast<double>(s.number());
+    auto vol = gsse::add_quantity<double>(s, gsse::on_cells, "volume", 1.0);
+    auto cv = gsse::values(s, vol);
+    for (std::size_t c = 0; c < s.num_cells(); ++c) {
+      const auto cell = s.cell(static_cast<gsse::cell_id>(c));
+      const auto& a = d.points()[cell[0]];
+      std::array<std::array<double, D>, D> m;
+      for (std::size_t i = 0; i < D; ++i)
+        for (std::size_t k = 0; k < D; ++k) m[i][k] = d.points()[cell[i + 1]][k] - a[k];
+      if constexpr (D == 3)
+        cv[c] = (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                 m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) / 6;
+      else
+        cv[c] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) / 2;
+    }
   }
   return d;
 }
