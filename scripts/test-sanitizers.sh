@@ -10,7 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 cmake -S . -B build-san -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
-  -DGSSE_SANITIZE=ON -DGSSE_FUZZ=OFF -DGSSE_BENCH=OFF >/dev/null
+  -DGSSE_SANITIZE=ON -DGSSE_FUZZ=OFF -DGSSE_BENCH=OFF -DGSSE_PYTHON=OFF >/dev/null
 cmake --build build-san -j "${GSSE_JOBS:-2}"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
