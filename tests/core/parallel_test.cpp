@@ -6,6 +6,7 @@
 #include <numeric>
 #include <random>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -86,4 +87,15 @@ BOOST_AUTO_TEST_CASE(for_each_threads_are_reused_safely) {
   std::atomic<int> after{0};
   for_each(execution::par(2), inner, [&](int) { ++after; });
   BOOST_TEST(after.load() == 50);
+}
+
+BOOST_AUTO_TEST_CASE(zero_threads_means_every_hardware_thread_everywhere) {
+  // one meaning of a thread count: for_each, the parallel sort and the writers all resolve 0 here
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  BOOST_TEST(gsse::execution::thread_count(0) == hw);
+  BOOST_TEST(gsse::execution::thread_count(3) == 3u);
+  std::vector<int> v(1000, 0);
+  std::atomic<int> seen{0};
+  gsse::for_each(gsse::execution::par(0), v, [&](int& x) { x = 1, ++seen; });
+  BOOST_TEST(seen.load() == 1000);
 }

@@ -1,6 +1,9 @@
 #define BOOST_TEST_MODULE pipeline
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -119,7 +122,16 @@ BOOST_AUTO_TEST_CASE(a_research_code_replaces_one_stage) {
   const auto l = conformer::label(b, p);
   const auto d = pl::mesh_segments<3>{}(b, l, 1);
   BOOST_TEST(gsse::verify::check(d, p).ok());
-  BOOST_TEST(d.points().size() >= p.points.size() + mine.size());  // every point of mine is a vertex
+  // every point of mine is a vertex of some cell, with its coordinates unchanged
+  std::vector<char> used(d.points().size(), 0);
+  for (const auto& s : d.segments())
+    for (const auto& c : s.cell_data())
+      for (auto v : c) used[v] = 1;
+  for (const auto& q : mine) {
+    const auto it = std::find(d.points().begin(), d.points().end(), q);
+    BOOST_TEST_REQUIRE((it != d.points().end()));
+    BOOST_TEST(used[static_cast<std::size_t>(it - d.points().begin())] == 1);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(cloud_points_outside_are_dropped) {
@@ -152,8 +164,25 @@ BOOST_AUTO_TEST_CASE(verifier_detects_a_broken_mesh) {
   std::size_t ncells = 0;
   for (const auto& s : d.segments()) ncells += s.num_cells();
   BOOST_TEST(q.elements == ncells);
-  BOOST_TEST(q.min_angle > 0.0);
-  BOOST_TEST(q.max_angle < 180.0);
+  // the angles and radius-edge ratios recomputed here, triangle by triangle (law of cosines and
+  // R = abc / 4A, apart from measure()'s code)
+  double lo = 180, hi = 0, rmin = 1e300, rmax = 0;
+  for (const auto& s : d.segments())
+    for (const auto& c : s.cell_data()) {
+      const auto& P = d.points();
+      const double a = distance(P[c[1]], P[c[2]]), b = distance(P[c[0]], P[c[2]]), e = distance(P[c[0]], P[c[1]]);
+      for (auto [x, y, z] : {std::array{a, b, e}, std::array{b, e, a}, std::array{e, a, b}}) {
+        const double deg = std::acos(std::clamp((y * y + z * z - x * x) / (2 * y * z), -1.0, 1.0)) * 180 / std::numbers::pi;
+        lo = std::min(lo, deg), hi = std::max(hi, deg);
+      }
+      const double sp = (a + b + e) / 2, area = std::sqrt(sp * (sp - a) * (sp - b) * (sp - e));
+      const double ratio = a * b * e / (4 * area) / std::min({a, b, e});
+      rmin = std::min(rmin, ratio), rmax = std::max(rmax, ratio);
+    }
+  BOOST_TEST(q.min_angle == lo, boost::test_tools::tolerance(1e-6));
+  BOOST_TEST(q.max_angle == hi, boost::test_tools::tolerance(1e-6));
+  BOOST_TEST(q.min_ratio == rmin, boost::test_tools::tolerance(1e-6));
+  BOOST_TEST(q.max_ratio == rmax, boost::test_tools::tolerance(1e-6));
 }
 
 BOOST_AUTO_TEST_CASE(closed_surface_becomes_one_named_segment) {

@@ -26,6 +26,7 @@ inline void append_int(std::string& s, long long x) {
 /// others go on formatting. Writing thus overlaps formatting, and memory stays at the ring's size.
 template <class Line>
 void write_lines(std::ostream& o, std::size_t n, unsigned threads, Line&& line) {
+  threads = execution::thread_count(threads);  // 0: every hardware thread, as everywhere
   // chunks of up to 8192 lines, smaller when that would leave threads idle (a 2e4-point .node
   // is three chunks of 8192); not below 1024 lines, where handing over a chunk would dominate
   const std::size_t chunk = std::clamp<std::size_t>(n / (4 * std::size_t{std::max(1u, threads)}), 1 << 10, 1 << 13);

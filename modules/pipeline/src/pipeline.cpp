@@ -154,11 +154,10 @@ pieces_t<D> wrap_pieces(const std::vector<point<D>>& pts, const conformer::bound
       cv.notify_all();
     }
   };
-  {
-    std::vector<std::jthread> pool;
-    for (unsigned t = 1; t < std::max(1u, threads); ++t) pool.emplace_back(worker);
-    worker();
-  }
+  // one worker per thread, on the library's pool (for_each): each takes pieces until none is
+  // left or can come; a worker the pool cannot staff at once finds the work done and returns
+  std::vector<unsigned> workers(execution::thread_count(threads));
+  for_each(execution::par(threads), workers, [&](unsigned) { worker(); });
   if (error) std::rethrow_exception(error);
   pieces_t<D> cells(l.regions.size());
   for (std::size_t r = 0; r < done.size(); ++r) {

@@ -25,6 +25,9 @@ struct parallel_policy {
 };
 inline constexpr sequenced_policy seq{};
 inline constexpr parallel_policy par{};
+/// The one meaning of a thread count across the library (for_each, parallel sort, the writers,
+/// pipeline::options::threads): n threads, 0 = every hardware thread.
+inline unsigned thread_count(unsigned n) { return n ? n : std::max(1u, std::thread::hardware_concurrency()); }
 }  // namespace gsse::execution
 
 namespace gsse {
@@ -41,7 +44,7 @@ void for_each(execution::sequenced_policy, R&& range, F&& f) {
 template <std::ranges::random_access_range R, class F, class Cost>
 void for_each(execution::parallel_policy p, R&& range, F&& f, Cost&& cost) {
   const std::size_t n = std::ranges::size(range);
-  unsigned threads = p.threads ? p.threads : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = execution::thread_count(p.threads);
   if (threads <= 1 || n <= 1) return for_each(execution::seq, range, f);
   std::vector<double> costs(n);
   for (std::size_t i = 0; i < n; ++i) costs[i] = static_cast<double>(std::invoke(cost, std::ranges::begin(range)[i]));

@@ -16,7 +16,7 @@ namespace gsse {
 template <std::random_access_iterator It, class Compare = std::less<>>
 void stable_sort(execution::parallel_policy p, It first, It last, Compare comp = {}) {
   const auto n = static_cast<std::size_t>(last - first);
-  const unsigned threads = p.threads ? p.threads : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = execution::thread_count(p.threads);
   constexpr std::size_t min_piece = 1 << 12;  // below this, threads cost more than they save
   const std::size_t pieces = std::min<std::size_t>(threads, n / min_piece);
   if (pieces <= 1) return std::stable_sort(first, last, comp);

@@ -26,7 +26,7 @@ struct options {
   fill interior = fill::lattice;
   const rules::front_rule_set* front_rules = nullptr;  // fill::rules; nullptr: the embedded default
   double too_far = front::creation_options{}.too_far;  // fill::rules: create points for faces whose apex ball exceeds too_far*H
-  unsigned threads = 1;  // threads for the per-segment meshing
+  unsigned threads = 1;  // threads shared by the stages (0: every hardware thread, execution::thread_count)
   bool verify = false;   // run the library verifier (gsse::verify::check against the input PLC) at the end
   conformer::options conform{};
   std::function<void(const std::string&)> progress;  // stage messages, may be empty
