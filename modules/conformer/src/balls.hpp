@@ -11,6 +11,7 @@
 #include <limits>
 #include <utility>
 
+#include "gsse/geometry/circumcentre.hpp"
 #include "gsse/geometry/exact_ball.hpp"
 #include "gsse/geometry/point.hpp"
 
@@ -67,7 +68,7 @@ inline std::pair<point3, double> equatorial_bound(const point3& a, const point3&
     geometry::exact_circumball(a, b, c, cc, r);
     return {cc, r};
   }
-  cc = a + (1.0 / (2 * nn)) * cross(uu * v - vv * u, n);
+  cc = a + geometry::triangle_circumcentre_offset(u, v, n, nn);
   r = distance(cc, a) * (1 + 4 * rel + 1e-12) + 4 * rel * std::sqrt(std::max(uu, vv)) + 8 * eps * magnitude(cc) + 1e-300;
   return {cc, r};
 }

@@ -1,4 +1,5 @@
 #include "gsse/front/point_creation.hpp"
+#include "gsse/geometry/circumcentre.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -129,22 +130,23 @@ std::pair<point<D>, double> padded_ball(const std::array<const point<D>*, N>& s)
     longest = distance(a, *s[1]);
   } else if constexpr (D == 2) {  // triangle in 2D
     const point2 u = *s[1] - a, v = *s[2] - a;
-    const double d = 2 * (u[0] * v[1] - u[1] * v[0]);
+    double d;
+    const point2 off = geometry::plane_circumcentre_offset(u, v, d);
     rel = d == 0 ? 1 : std::sqrt(dot(u, u) * dot(v, v)) / std::abs(d) * eps * 64;
-    c = a + point2{(v[1] * dot(u, u) - u[1] * dot(v, v)) / d, (u[0] * dot(v, v) - v[0] * dot(u, u)) / d};
+    c = a + off;
     longest = std::sqrt(std::max(dot(u, u), dot(v, v)));
   } else if constexpr (N == 3) {  // triangle in 3D
     const point3 u = *s[1] - a, v = *s[2] - a, n = cross(u, v);
     const double nn = dot(n, n);
     rel = nn == 0 ? 1 : dot(u, u) * dot(v, v) / nn * eps * 64;
-    c = a + (1.0 / (2 * nn)) * cross(dot(u, u) * v - dot(v, v) * u, n);
+    c = a + geometry::triangle_circumcentre_offset(u, v, n, nn);
     longest = std::sqrt(std::max(dot(u, u), dot(v, v)));
   } else {  // tetrahedron
     const point3 u = *s[1] - a, v = *s[2] - a, w = *s[3] - a;
-    const point3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
-    const double det = dot(u, vw);
+    double det;
+    const point3 off = geometry::tetrahedron_circumcentre_offset(u, v, w, det);
     rel = det == 0 ? 1 : std::sqrt(dot(u, u) * dot(v, v) * dot(w, w)) / std::abs(det) * eps * 64;
-    c = a + (1.0 / (2 * det)) * (dot(u, u) * vw + dot(v, v) * wu + dot(w, w) * uv);
+    c = a + off;
     longest = std::sqrt(std::max({dot(u, u), dot(v, v), dot(w, w)}));
   }
   if (rel > 1e-6 || !is_finite(c)) return {a, std::numeric_limits<double>::infinity()};

@@ -1,4 +1,5 @@
 #include "gsse/pipeline/pipeline.hpp"
+#include "gsse/geometry/circumcentre.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -485,8 +486,8 @@ quality measure(const domain<D>& d) {
         }
       } else {
         const point3 u = p[c[1]] - p[c[0]], v = p[c[2]] - p[c[0]], w = p[c[3]] - p[c[0]];
-        const double det = dot(u, cross(v, w));
-        const point3 cc = (1.0 / (2 * det)) * (dot(u, u) * cross(v, w) + dot(v, v) * cross(w, u) + dot(w, w) * cross(u, v));
+        double det;
+        const point3 cc = geometry::tetrahedron_circumcentre_offset(u, v, w, det);
         r = std::sqrt(dot(cc, cc));
         // dihedral angle at edge (i,j): between the faces opposite k and l
         for (std::size_t i = 0; i < 4; ++i)

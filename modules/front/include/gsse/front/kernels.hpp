@@ -22,6 +22,7 @@
 #include <limits>
 #include <span>
 
+#include "gsse/geometry/circumcentre.hpp"
 #include "gsse/geometry/exact_ball.hpp"
 #include "gsse/geometry/predicates.hpp"
 #include "gsse/front/point_grid.hpp"
@@ -69,15 +70,14 @@ struct volume_kernel {
   bool ball_unpadded(const face& f, vertex_id x, coord& centre, double& r) const {
     const point3& a = p[f[0]];
     const point3 u = p[f[1]] - a, v = p[f[2]] - a, w = p[x] - a;
-    const point3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
-    const double det = dot(u, vw);
+    double det;
+    const point3 c = geometry::tetrahedron_circumcentre_offset(u, v, w, det);
     const double scale = std::sqrt(dot(u, u) * dot(v, v) * dot(w, w));
     const double rel = det == 0 ? 1.0 : scale / std::abs(det) * detail::eps * 64;
     if (rel > detail::max_relative_error) {  // nearly flat: construct exactly, round outward
       geometry::exact_circumball(a, p[f[1]], p[f[2]], p[x], centre, r);
       return std::isfinite(r);
     }
-    const point3 c = (1.0 / (2 * det)) * (dot(u, u) * vw + dot(v, v) * wu + dot(w, w) * uv);
     r = detail::padded(std::sqrt(dot(c, c)), rel, std::sqrt(std::max({dot(u, u), dot(v, v), dot(w, w)})));
     centre = a + c;
     return true;
@@ -91,7 +91,7 @@ struct volume_kernel {
     const point3 u = p[f[1]] - a, v = p[f[2]] - a;
     const point3 n = cross(u, v);
     const double nn = dot(n, n);
-    const point3 c = (1.0 / (2 * nn)) * cross(dot(u, u) * v - dot(v, v) * u, n);
+    const point3 c = geometry::triangle_circumcentre_offset(u, v, n, nn);
     const double l = std::sqrt(std::max({dot(u, u), dot(v, v), squared_distance(p[f[1]], p[f[2]])}));
     return {a + c, (1.0 / std::sqrt(nn)) * n, dot(c, c), l, 64 * detail::eps * l * l / std::sqrt(nn)};
   }
@@ -140,14 +140,14 @@ struct plane_kernel {
   bool ball_unpadded(const face& f, vertex_id x, coord& centre, double& r) const {
     const point2& a = p[f[0]];
     const point2 u = p[f[1]] - a, v = p[x] - a;
-    const double d = 2 * (u[0] * v[1] - u[1] * v[0]);
+    double d;
+    const point2 c = geometry::plane_circumcentre_offset(u, v, d);
     const double scale = std::sqrt(dot(u, u) * dot(v, v));
     const double rel = d == 0 ? 1.0 : scale / std::abs(d) * detail::eps * 64;
     if (rel > detail::max_relative_error) {
       geometry::exact_circumball(a, p[f[1]], p[x], centre, r);
       return std::isfinite(r);
     }
-    const point2 c{(v[1] * dot(u, u) - u[1] * dot(v, v)) / d, (u[0] * dot(v, v) - v[0] * dot(u, u)) / d};
     r = detail::padded(std::sqrt(dot(c, c)), rel, std::sqrt(std::max(dot(u, u), dot(v, v))));
     centre = a + c;
     return true;
@@ -216,7 +216,7 @@ struct facet_kernel {
       centre = geometry::project(c3, axis);
       return std::isfinite(r);
     }
-    const point3 c = (1.0 / (2 * nn)) * cross(dot(u, u) * v - dot(v, v) * u, n);
+    const point3 c = geometry::triangle_circumcentre_offset(u, v, n, nn);
     r = detail::padded(std::sqrt(dot(c, c)), rel, std::sqrt(std::max(dot(u, u), dot(v, v))));
     centre = geometry::project(a + c, axis);
     return true;
