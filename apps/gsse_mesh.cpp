@@ -17,6 +17,7 @@
 #include "gsse/pipeline/pipeline.hpp"
 #include "gsse/plc/region_points.hpp"
 #include "gsse/rules/defaults.hpp"
+#include "gsse/verify/verify.hpp"
 
 namespace {
 
@@ -25,6 +26,7 @@ void usage(std::FILE* to) {
       "usage: gsse-mesh INPUT [-o OUTPUT] [--size H] [--cloud POINTS.node] [--threads N] [--verify]\n"
       "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
       "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly] [--msh 4.1|2.2]\n"
+      "       gsse-mesh INPUT --check MESH [--threads N] [--quiet]\n"
       "  INPUT    TetGen .poly/.smesh (3D), Triangle .poly (2D), or a closed surface: OFF, STL,\n"
       "           Gmsh .msh surface mesh (its volumes become segments)\n"
       "  -o       output mesh: .vtu, .msh, or .node (writes .node/.ele/.face beside it); boundary\n"
@@ -40,21 +42,49 @@ void usage(std::FILE* to) {
       "           its front rules the mesher's (front rules imply --fill rules)\n"
       "  --no-merge keep coplanar facets of one marker apart (by default they are merged across\n"
       "           edges no other facet uses, as TetGen does without -M)\n"
+      "  --check  verify an existing mesh (.msh, or TetGen/Triangle .node/.ele with the segment\n"
+      "           number as element attribute, any mesher's) against INPUT, as --verify does, and\n"
+      "           exit: status 0 if it passes, 3 if not (the problems on stderr)\n"
       "  --plc-out write the input as read (with the region points placed in Gmsh volumes) as a\n"
       "           TetGen/Triangle .poly and exit without meshing\n",
       to);
 }
 
 struct args {
-  std::string input, output, cloud, stats, rules, fill, plc_out;
+  std::string input, output, cloud, stats, rules, fill, plc_out, check;
   double size = 0;
   unsigned threads = 1;
   bool verify = false, quiet = false, no_merge = false, msh22 = false;
   std::size_t max_steiner = gsse::conformer::options{}.max_steiner;
 };
 
+/// The verifier's verdict, as --verify and --check print it: problems on stderr; exit status 3 if any.
+int verdict(const std::vector<std::string>& problems, bool print, const char* what) {
+  if (print) std::printf("%s: %s\n", what, problems.empty() ? "PASS" : "FAIL");
+  for (const auto& s : problems) std::fprintf(stderr, "gsse-mesh: %s: %s\n", what, s.c_str());
+  return problems.empty() ? 0 : 3;
+}
+
+/// --check: an existing mesh against the input PLC.
+template <std::size_t D>
+int check(const gsse::plc<D>& p, const args& a) {
+  const std::string& m = a.check;
+  auto ends = [&](const char* e) { return m.size() >= std::strlen(e) && m.compare(m.size() - std::strlen(e), std::string::npos, e) == 0; };
+  const gsse::domain<D> d = ends(".msh") ? gsse::io::read_msh<D>(m) : gsse::io::read_node_ele<D>(m);
+  gsse::verify::options vo;
+  vo.threads = a.threads;
+  const auto r = gsse::verify::check(d, p, vo);
+  if (!a.quiet)
+    std::printf("%s against %s: %zu cells, %zu hull and %zu interface faces (%zu on a facet within the tolerance),\n"
+                "  %zu components, volume error %.3g, deepest vertex inside a circumsphere %.3g of its squared radius\n",
+                m.c_str(), p.source.c_str(), r.cells, r.hull_faces, r.interface_faces, r.inexact_faces, r.components,
+                r.volume_error, r.deepest_delaunay);
+  return verdict(r.problems, !a.quiet, "check");
+}
+
 template <std::size_t D>
 int run(const gsse::plc<D>& p, const args& a) {
+  if (!a.check.empty()) return check(p, a);
   const bool tty = !a.quiet && isatty(2);
   std::vector<gsse::point<D>> cloud;
   if (!a.cloud.empty()) cloud = gsse::io::read_node<D>(a.cloud);
@@ -126,9 +156,7 @@ int run(const gsse::plc<D>& p, const args& a) {
     std::printf("  quality: radius-edge ratio min %.3f median %.3f max %.3g; %s angle min %.2f max %.2f degrees\n",
                 q.min_ratio, q.median_ratio, q.max_ratio, D == 3 ? "dihedral" : "plane", q.min_angle, q.max_angle);
     for (const auto& t : r.times) std::printf("  %-8s %8.3f s\n", t.stage.c_str(), t.seconds);
-    if (a.verify) std::printf("verify: %s\n", problems.empty() ? "PASS" : "FAIL");
   }
-  for (const auto& s : problems) std::fprintf(stderr, "gsse-mesh: verify: %s\n", s.c_str());
   if (!a.stats.empty() && problems.empty()) {  // a failed verification writes no file at all
     std::ofstream js(a.stats);
     js << "{\"points\": " << d.points().size() << ", \"segments\": [";
@@ -141,7 +169,7 @@ int run(const gsse::plc<D>& p, const args& a) {
       js << (k ? ", " : "") << "\"" << r.times[k].stage << "\": " << r.times[k].seconds;
     js << "}, \"verified\": " << (a.verify ? "true" : "null") << "}\n";
   }
-  return problems.empty() ? 0 : 3;
+  return verdict(problems, a.verify && !a.quiet, "verify");
 }
 
 }  // namespace
@@ -190,6 +218,8 @@ int main(int argc, char** argv) {
           throw std::invalid_argument("--plc-out must name a .poly file");
       } else if (s == "--max-steiner") {
         a.max_steiner = std::stoul(value());
+      } else if (s == "--check") {
+        a.check = value();
       } else if (s == "--verify") {
         a.verify = true;
       } else if (s == "--no-merge") {
@@ -210,6 +240,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (a.input.empty()) {
+    usage(stderr);
+    return 2;
+  }
+  if (!a.check.empty() && (!a.output.empty() || !a.stats.empty() || !a.cloud.empty() || a.size > 0 || a.verify)) {
+    std::fprintf(stderr, "gsse-mesh: --check verifies an existing mesh: it takes none of -o, --stats, --cloud, --size, --verify\n");
     usage(stderr);
     return 2;
   }

@@ -6,11 +6,13 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <set>
 
 #include "gsse/conformer/conformer.hpp"
 #include "gsse/conformer/regions.hpp"
 #include "gsse/io/poly.hpp"
 #include "gsse/pipeline/pipeline.hpp"
+#include "conformer/encroachment_oracle.hpp"
 #include "support/shared.hpp"
 
 using namespace gsse;
@@ -28,6 +30,13 @@ std::size_t conform_and_check(const plc<D>& p, const std::vector<point<D>>& volu
   const auto b = cf::conform(p, volume, o);
   const auto bad = cf::encroached(b);
   BOOST_TEST(bad.empty(), what << ": " << bad.size() << " encroached elements");
+  // the independent oracle (CGAL directly, brute force; tests/conformer/encroachment_oracle.hpp)
+  const auto oracle = test::encroachment_oracle(b);
+  BOOST_TEST(oracle.strictly_encroached.empty(), what << ": oracle finds " << oracle.strictly_encroached.size() << " encroached elements");
+  BOOST_TEST(oracle.not_delaunay == 0u, what << ": " << oracle.not_delaunay << " subfacets are not faces of CGAL's Delaunay triangulation");
+  BOOST_TEST(oracle.encroached_subsegments == 0u,
+             what << ": " << oracle.encroached_subsegments << " of " << oracle.subsegments << " subsegments encroached");
+  BOOST_TEST_MESSAGE("oracle " << what << ": " << oracle.ties << " ties, " << oracle.subsegments << " subsegments");
   BOOST_CHECK_NO_THROW(cf::label(b, p));
   BOOST_TEST_MESSAGE("steiner " << what << " size=" << size << " volume=" << volume.size() << ": " << b.steiner
                                 << " Steiner points, " << b.faces.size() << " faces, " << b.rounds << " rounds");
@@ -202,4 +211,35 @@ BOOST_AUTO_TEST_CASE(invalid_plcs_are_rejected) {
   nonplanar.points[8][2] = 0.6;  // one corner of the top facet lifted
   BOOST_CHECK_EXCEPTION(cf::conform(nonplanar, {}, o), cf::conform_error,
                         [](const auto& e) { return std::string(e.what()).find("not in the facet's plane") != std::string::npos; });
+}
+
+BOOST_AUTO_TEST_CASE(post_check_agrees_with_the_oracle) {
+  // a conformed boundary spoiled by random points: the library's post-check and the independent
+  // oracle must name the same encroached faces (random points: no ties, almost surely)
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.05, 1.05);
+  {
+    auto b = cf::conform(stacked(0.5), {}, {});
+    const std::size_t n = b.points.size();
+    for (int i = 0; i < 40; ++i) b.points.push_back({u(rng), u(rng), u(rng) * 1.5 - 1});
+    b.homes.resize(b.points.size());
+    std::set<std::size_t> mine;
+    for (const auto& [f, v] : cf::encroached(b)) {
+      BOOST_TEST(v >= n);  // only the new points encroach
+      mine.insert(f);
+    }
+    const auto o = test::encroachment_oracle(b);
+    BOOST_TEST(!mine.empty());
+    BOOST_TEST(mine == o.strictly_encroached, "3D: post-check " << mine.size() << " faces, oracle " << o.strictly_encroached.size());
+  }
+  {
+    auto b = cf::conform(wedge_2d(30), {}, {});
+    for (int i = 0; i < 40; ++i) b.points.push_back({u(rng), u(rng) * 0.6});
+    b.homes.resize(b.points.size());
+    std::set<std::size_t> mine;
+    for (const auto& [f, v] : cf::encroached(b)) mine.insert(f);
+    const auto o = test::encroachment_oracle(b);
+    BOOST_TEST(!mine.empty());
+    BOOST_TEST(mine == o.strictly_encroached, "2D: post-check " << mine.size() << " faces, oracle " << o.strictly_encroached.size());
+  }
 }

@@ -288,17 +288,29 @@ BOOST_AUTO_TEST_CASE(smesh_and_triangle_poly_and_node) {
   dir.write("t.node", "4 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n");
   const auto s = dir.write("t.smesh", "0 3 0 0\n4 1\n3 0 2 1 1\n3 0 1 3 2\n3 0 3 2 3\n3 1 2 3 4\n0\n0\n");
   auto g = io::read_tetgen_poly(s);
-  BOOST_TEST(g.points.size() == 4u);
+  // coordinates from the .node, zero-based connectivity in the file's order, the markers
+  const std::vector<point3> corners{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  BOOST_TEST((g.points == corners));
   BOOST_TEST_REQUIRE(g.facets.size() == 4u);
-  BOOST_TEST(g.facets[3].marker == 4);
-  BOOST_TEST(io::read_node<3>(dir.file("t.node")).size() == 4u);
+  const std::vector<std::vector<vertex_id>> loops{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  for (std::size_t f = 0; f < 4; ++f) {
+    BOOST_TEST_REQUIRE(g.facets[f].polygons.size() == 1u);
+    BOOST_TEST((g.facets[f].polygons[0] == loops[f]));
+    BOOST_TEST(g.facets[f].marker == int(f) + 1);
+  }
+  BOOST_TEST((io::read_node<3>(dir.file("t.node")) == corners));
   const auto t = dir.write("sq.poly", "4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n4 1\n1 1 2 7\n2 2 3 7\n3 3 4 7\n4 4 1 8\n"
                                       "0\n1\n1 0.5 0.5 2 0.05\n");
   auto any = io::read_plc(t);
   BOOST_TEST_REQUIRE(std::holds_alternative<plc<2>>(any));
   const auto& q = std::get<plc<2>>(any);
-  BOOST_TEST(q.edges.size() == 4u);
-  BOOST_TEST(q.edge_markers[3] == 8);
+  BOOST_TEST((q.points == std::vector<point2>{{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
+  BOOST_TEST_REQUIRE(q.edges.size() == 4u);
+  for (vertex_id e = 0; e < 4; ++e) BOOST_TEST((q.edges[e] == std::array<vertex_id, 2>{e, (e + 1) % 4}));
+  BOOST_TEST((q.edge_markers == std::vector<int>{7, 7, 7, 8}));
+  BOOST_TEST_REQUIRE(q.regions.size() == 1u);
+  BOOST_TEST((q.regions[0].at == point2{0.5, 0.5}));
+  BOOST_TEST(q.regions[0].number == 2);
   BOOST_TEST(q.regions[0].max_volume == 0.05);
 }
 
@@ -309,8 +321,13 @@ BOOST_AUTO_TEST_CASE(off_cube) {
                            "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7 255 0 0\n");
   auto any = io::read_plc(p);
   const auto& g = std::get<plc<3>>(any);
-  BOOST_TEST(g.points.size() == 8u);
-  BOOST_TEST(g.facets.size() == 6u);
+  BOOST_TEST((g.points == std::vector<point3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}));
+  BOOST_TEST_REQUIRE(g.facets.size() == 6u);
+  const std::vector<std::vector<vertex_id>> loops{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  for (std::size_t f = 0; f < 6; ++f) {
+    BOOST_TEST_REQUIRE(g.facets[f].polygons.size() == 1u);
+    BOOST_TEST((g.facets[f].polygons[0] == loops[f]));  // the colour after the last face is ignored
+  }
   BOOST_TEST(g.regions.empty());
   BOOST_TEST(io::single_segment_name(g.source) == "box");
 }
@@ -318,6 +335,21 @@ BOOST_AUTO_TEST_CASE(off_cube) {
 namespace {
 const float tet[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 const int tri[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+
+// The STL's four triangles, corner by corner in the file's order (so the orientation is kept),
+// by coordinates: the merged vertex ids are the reader's choice.
+void same_triangles(const plc<3>& g) {
+  BOOST_TEST_REQUIRE(g.facets.size() == 4u);
+  for (std::size_t f = 0; f < 4; ++f) {
+    BOOST_TEST_REQUIRE(g.facets[f].polygons.size() == 1u);
+    const auto& loop = g.facets[f].polygons[0];
+    BOOST_TEST_REQUIRE(loop.size() == 3u);
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto& c = tet[tri[f][k]];
+      BOOST_TEST((g.points[loop[k]] == point3{c[0], c[1], c[2]}), "facet " << f << " corner " << k);
+    }
+  }
+}
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(stl_ascii_and_binary_merge_vertices) {
@@ -332,7 +364,7 @@ BOOST_AUTO_TEST_CASE(stl_ascii_and_binary_merge_vertices) {
   a << "endsolid tet\n";
   auto g = io::read_stl(dir.write("tet.stl", a.str()));
   BOOST_TEST(g.points.size() == 4u);  // 12 corners merged; -0 equals 0
-  BOOST_TEST(g.facets.size() == 4u);
+  same_triangles(g);
   // binary, with a header that starts with "solid" like many exporters write
   std::string b(80, ' ');
   std::memcpy(b.data(), "solid but binary", 16);
@@ -348,7 +380,7 @@ BOOST_AUTO_TEST_CASE(stl_ascii_and_binary_merge_vertices) {
   auto any = io::read_plc(dir.write("tetb.stl", b));
   const auto& h = std::get<plc<3>>(any);
   BOOST_TEST(h.points.size() == 4u);
-  BOOST_TEST(h.facets.size() == 4u);
+  same_triangles(h);
   BOOST_TEST(h.regions.empty());
 }
 

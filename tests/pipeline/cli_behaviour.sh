@@ -6,8 +6,12 @@
 #               conformer's trace shows midpoint splits only, where the defaults project and rotate;
 #  hole points  a volume hole point empties its cell: the tetrahedra's volume is the cube's minus
 #               the inner box's (computed here from .node/.ele);
-#  --verify     PASS on a good mesh, exit 0 (a failing verification, exit 3 and nothing written,
-#               needs a broken mesher: tests/verify checks the verifier on corrupted meshes).
+#  --verify     PASS on a good mesh, exit 0;
+#  --check      an existing mesh against the input: the good mesh passes (exit 0); the same mesh
+#               with one tetrahedron dropped, or with the inner box relabelled as the outer
+#               region, fails with exit 3 and the verifier's problem on stderr (the verdict and
+#               exit status are the code --verify's failure goes through; a failing --verify
+#               itself needs a broken mesher: tests/verify checks the verifier on corrupted meshes).
 # usage: cli_behaviour.sh GSSE_MESH SOURCE_DIR
 set -uo pipefail
 mesh=$1; src=$2
@@ -88,4 +92,25 @@ if $py -c "import sys; sys.exit(0 if abs($v2 - 1) < 1e-12 else 1)"; then ok "wit
 out=$("$mesh" "$work/box.poly" --size 0.2 --verify -o "$work/v.vtu" 2>&1); rc=$?
 if [ $rc = 0 ] && [[ "$out" == *"verify: PASS"* ]] && [ -e "$work/v.vtu" ]; then ok "--verify: PASS, exit 0, output written"
 else bad "--verify: exit $rc"; fi
+# --check: the good mesh, then broken copies of it
+out=$("$mesh" "$work/box.poly" --check "$work/m.node" 2>&1); rc=$?
+if [ $rc = 0 ] && [[ "$out" == *"check: PASS"* ]]; then ok "--check m.node: PASS, exit 0"; else bad "--check m.node: exit $rc: $out"; fi
+cp "$work/m.node" "$work/d.node"; cp "$work/m.json" "$work/d.json" 2>/dev/null
+$py - "$work/m.ele" "$work/d.ele" <<'PY'
+import sys
+lines = [l for l in open(sys.argv[1]) if l.strip() and not l.startswith("#")]
+head = lines[0].split()
+head[0] = str(int(head[0]) - 1)
+open(sys.argv[2], "w").write(" ".join(head) + "\n" + "".join(lines[1:-1]))
+PY
+err=$("$mesh" "$work/box.poly" --check "$work/d.node" 2>&1 >/dev/null); rc=$?
+if [ $rc = 3 ] && [[ "$err" == *"check: "*"faces lie on no input facet"* ]]; then ok "--check, one tetrahedron dropped: exit 3, '$(echo "$err" | head -1)'"
+else bad "--check, one tetrahedron dropped: exit $rc, '$err'"; fi
+cp "$work/m.node" "$work/r.node"
+awk 'NR > 1 && NF >= 6 && !/^#/ { $6 = 1 } { print }' "$work/m.ele" > "$work/r.ele"
+err=$("$mesh" "$work/box.poly" --check "$work/r.node" 2>&1 >/dev/null); rc=$?
+if [ $rc = 3 ] && [[ "$err" == *"region point"* ]]; then ok "--check, inner box relabelled: exit 3, '$(echo "$err" | head -1)'"
+else bad "--check, inner box relabelled: exit $rc, '$err'"; fi
+msg=$("$mesh" "$work/box.poly" --check "$work/m.node" -o "$work/x.vtu" 2>&1); rc=$?
+if [ $rc = 2 ] && [ ! -e "$work/x.vtu" ]; then ok "--check with -o: exit 2"; else bad "--check with -o: exit $rc"; fi
 exit $fail

@@ -57,7 +57,11 @@ boundary<2> conform(const plc<2>& p, const std::vector<point2>& volume, const op
 boundary<3> conform(const plc<3>& p, const std::vector<point3>& volume, const options& o = {});
 
 /// Post-check: every encroached element of `b`, as (face index, encroaching vertex). Empty means
-/// the boundary is conforming. Decided with exact predicates and the tie rule above.
+/// the boundary is conforming. Decided with exact predicates and the tie rule above. In 3D it
+/// checks the subfacets only: a subfacet of the Delaunay triangulation brings its edges along, so
+/// that is what conformity needs. The tests hold it against an oracle that shares none of its
+/// code (tests/conformer/encroachment_oracle.hpp: CGAL's predicates and Delaunay_triangulation_3,
+/// brute force), which also finds no encroached subsegment on any conformed test boundary.
 std::vector<std::pair<std::size_t, vertex_id>> encroached(const boundary<2>& b);
 std::vector<std::pair<std::size_t, vertex_id>> encroached(const boundary<3>& b);
 
