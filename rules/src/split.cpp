@@ -2,6 +2,7 @@
 // decision is taken here, the conformer re-checks encroachment with exact predicates).
 #include <cmath>
 
+#include "gsse/geometry/circumcentre.hpp"
 #include "gsse/rules/split_rule.hpp"
 
 namespace gsse::rules {
@@ -30,12 +31,6 @@ std::optional<point<D>> normalized(const point<D>& v) {
 point3 project_to_plane(const point3& a, const point3& b, const point3& c, const point3& p) {
   const point3 n = cross(b - a, c - a);
   return p - (dot(p - a, n) / dot(n, n)) * n;
-}
-
-point3 circumcentre(const point3& a, const point3& b, const point3& c) {
-  const point3 ab = b - a, ac = c - a, n = cross(ab, ac);
-  const point3 num = dot(ac, ac) * cross(n, ab) + dot(ab, ab) * cross(ac, n);
-  return a + (1.0 / (2 * dot(n, n))) * num;
 }
 
 template <std::size_t D>
@@ -165,9 +160,11 @@ std::optional<point3> split_candidate(split_action a, std::span<const point3> el
     case split_action::project:
       r = project_to_plane(p0, p1, p2, e);
       break;
-    case split_action::midpoint:
-      r = circumcentre(p0, p1, p2);
+    case split_action::midpoint: {  // a subfacet's circumcentre
+      const point3 u = p1 - p0, v = p2 - p0, n = cross(u, v);
+      r = p0 + geometry::triangle_circumcentre_offset(u, v, n, dot(n, n));
       break;
+    }
     case split_action::rotate_vertex: {
       if (!shared.vertex) return std::nullopt;
       const point3& s = *shared.vertex;

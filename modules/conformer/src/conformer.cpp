@@ -1187,10 +1187,16 @@ class state3 : public state<3> {
         if (!(S.checked || std::binary_search(S.clean.begin(), S.clean.end(), key)) || in_closed_ball(recent, T, cc, r))
           y = facet_encroacher(T[0], T[1], T[2], cc, r, ties);
         S.was_clean[t] = y == no_vertex;
-        // longer than the size, not merely by rounding: the facet lattice has edges of exactly
-        // the size, which rounding would otherwise split by the ten thousand
-        const bool too_big = opt_.size > 0 && std::max({distance(p[T[0]], p[T[1]]), distance(p[T[1]], p[T[2]]),
-                                                          distance(p[T[2]], p[T[0]])}) > opt_.size * (1 + 1e-9);
+        // too large: circumradius above that of the facet lattice's equilateral triangle
+        // (size / sqrt 3), not merely by rounding. An edge test ("longer than the size") cut the
+        // near-right triangles where the lattice meets boundary strips and merged facets' seams,
+        // a cascade of one row per round (docs/design-decisions.md)
+        bool too_big = false;
+        if (opt_.size > 0) {
+          const point3 u = p[T[1]] - p[T[0]], v = p[T[2]] - p[T[0]], w = p[T[2]] - p[T[1]], n = cross(u, v);
+          // R^2 = |u|^2 |v|^2 |w|^2 / (4 |n|^2) against size^2 / 3
+          too_big = 3 * dot(u, u) * dot(v, v) * dot(w, w) > 4 * dot(n, n) * opt_.size * opt_.size * (1 + 2e-9);
+        }
         if (y != no_vertex || too_big) mine.push_back({w.f, static_cast<std::uint32_t>(t), y});
       }
       box.quiet = mine.empty();
