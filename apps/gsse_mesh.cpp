@@ -25,8 +25,8 @@ void usage(std::FILE* to) {
   std::fputs(
       "usage: gsse-mesh INPUT [-o OUTPUT] [--size H] [--cloud POINTS.node] [--threads N] [--verify]\n"
       "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
-      "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly] [--msh 4.1|2.2]\n"
-      "       gsse-mesh INPUT --check MESH [--threads N] [--quiet]\n"
+      "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly] [--msh 4.1|2.2] [--verify-tol R]\n"
+      "       gsse-mesh INPUT --check MESH [--threads N] [--quiet] [--verify-tol R]\n"
       "  INPUT    TetGen .poly/.smesh (3D), Triangle .poly (2D), or a closed surface: OFF, STL,\n"
       "           Gmsh .msh surface mesh (its volumes become segments)\n"
       "  -o       output mesh: .vtu, .msh, or .node (writes .node/.ele/.face beside it); boundary\n"
@@ -42,6 +42,9 @@ void usage(std::FILE* to) {
       "           its front rules the mesher's (front rules imply --fill rules)\n"
       "  --no-merge keep coplanar facets of one marker apart (by default they are merged across\n"
       "           edges no other facet uses, as TetGen does without -M)\n"
+      "  --verify-tol R  --verify with facet tolerance R (relative to the input's bounding-box\n"
+      "           diagonal; default 1e-9; 0: face vertices exactly in their facets' planes, which\n"
+      "           Steiner points on slanted facets cannot be)\n"
       "  --check  verify an existing mesh (.msh, or TetGen/Triangle .node/.ele with the segment\n"
       "           number as element attribute, any mesher's) against INPUT, as --verify does, and\n"
       "           exit: status 0 if it passes, 3 if not (the problems on stderr)\n"
@@ -52,9 +55,9 @@ void usage(std::FILE* to) {
 
 struct args {
   std::string input, output, cloud, stats, rules, fill, plc_out, check;
-  double size = 0;
+  double size = 0, verify_tol = gsse::verify::options{}.facet_tolerance;
   unsigned threads = 1;
-  bool verify = false, quiet = false, no_merge = false, msh22 = false;
+  bool verify = false, verify_tol_given = false, quiet = false, no_merge = false, msh22 = false;
   std::size_t max_steiner = gsse::conformer::options{}.max_steiner;
 };
 
@@ -73,6 +76,7 @@ int check(const gsse::plc<D>& p, const args& a) {
   const gsse::domain<D> d = ends(".msh") ? gsse::io::read_msh<D>(m) : gsse::io::read_node_ele<D>(m);
   gsse::verify::options vo;
   vo.threads = a.threads;
+  vo.facet_tolerance = a.verify_tol;
   const auto r = gsse::verify::check(d, p, vo);
   if (!a.quiet)
     std::printf("%s against %s: %zu cells, %zu hull and %zu interface faces (%zu on a facet within the tolerance),\n"
@@ -92,6 +96,7 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.size = a.size;
   o.threads = a.threads;
   o.verify = a.verify;
+  o.verify_tolerance = a.verify_tol;
   o.conform.max_steiner = a.max_steiner;
   o.conform.merge_coplanar = !a.no_merge;
   // GSSE_CONFORM_TRACE=1: the conformer's rounds on stderr (the library prints nothing itself)
@@ -220,6 +225,10 @@ int main(int argc, char** argv) {
         a.max_steiner = std::stoul(value());
       } else if (s == "--check") {
         a.check = value();
+      } else if (s == "--verify-tol") {
+        a.verify_tol = std::stod(value());
+        if (!(a.verify_tol >= 0 && a.verify_tol < 1)) throw std::invalid_argument("--verify-tol must be in [0, 1)");
+        a.verify_tol_given = true;
       } else if (s == "--verify") {
         a.verify = true;
       } else if (s == "--no-merge") {
@@ -243,6 +252,7 @@ int main(int argc, char** argv) {
     usage(stderr);
     return 2;
   }
+  if (a.verify_tol_given && a.check.empty()) a.verify = true;  // --verify-tol implies --verify
   if (!a.check.empty() && (!a.output.empty() || !a.stats.empty() || !a.cloud.empty() || a.size > 0 || a.verify)) {
     std::fprintf(stderr, "gsse-mesh: --check verifies an existing mesh: it takes none of -o, --stats, --cloud, --size, --verify\n");
     usage(stderr);

@@ -6,12 +6,14 @@
 #               conformer's trace shows midpoint splits only, where the defaults project and rotate;
 #  hole points  a volume hole point empties its cell: the tetrahedra's volume is the cube's minus
 #               the inner box's (computed here from .node/.ele);
-#  --verify     PASS on a good mesh, exit 0;
+#  --verify     PASS on a good mesh, exit 0; on a cube turned by a generic rotation with
+#               --verify-tol 0 (faces on slanted facets only within rounding: the verifier must
+#               reject them), FAIL: exit 3, the problems on stderr, and neither -o nor --stats
+#               written; the same run at the default tolerance passes and writes both;
 #  --check      an existing mesh against the input: the good mesh passes (exit 0); the same mesh
 #               with one tetrahedron dropped, or with the inner box relabelled as the outer
 #               region, fails with exit 3 and the verifier's problem on stderr (the verdict and
-#               exit status are the code --verify's failure goes through; a failing --verify
-#               itself needs a broken mesher: tests/verify checks the verifier on corrupted meshes).
+#               exit status are the code --verify's failure goes through).
 # usage: cli_behaviour.sh GSSE_MESH SOURCE_DIR
 set -uo pipefail
 mesh=$1; src=$2
@@ -92,6 +94,30 @@ if $py -c "import sys; sys.exit(0 if abs($v2 - 1) < 1e-12 else 1)"; then ok "wit
 out=$("$mesh" "$work/box.poly" --size 0.2 --verify -o "$work/v.vtu" 2>&1); rc=$?
 if [ $rc = 0 ] && [[ "$out" == *"verify: PASS"* ]] && [ -e "$work/v.vtu" ]; then ok "--verify: PASS, exit 0, output written"
 else bad "--verify: exit $rc"; fi
+# --verify failing: a rotated cube, verified with tolerance 0
+$py - "$work/rot.poly" <<'PY'
+import sys, math
+a, b, c = 0.3, 0.7, 1.1  # a generic rotation: no facet parallel to an axis
+def rot(p):
+    x, y, z = p
+    x, y = x * math.cos(a) - y * math.sin(a), x * math.sin(a) + y * math.cos(a)
+    y, z = y * math.cos(b) - z * math.sin(b), y * math.sin(b) + z * math.cos(b)
+    z, x = z * math.cos(c) - x * math.sin(c), z * math.sin(c) + x * math.cos(c)
+    return x, y, z
+P = [rot((x, y, z)) for z in (0, 1) for y in (0, 1) for x in (0, 1)]
+F = [(1, 2, 4), (1, 4, 3), (5, 6, 8), (5, 8, 7), (1, 2, 6), (1, 6, 5), (3, 4, 8), (3, 8, 7), (1, 3, 7), (1, 7, 5), (2, 4, 8), (2, 8, 6)]
+with open(sys.argv[1], "w") as f:
+    f.write("8 3 0 0\n" + "".join(f"{i+1} {p[0]!r} {p[1]!r} {p[2]!r}\n" for i, p in enumerate(P)))
+    f.write("12 0\n" + "".join("1\n3 %d %d %d\n" % t for t in F) + "0\n1\n1 %r %r %r 1 -1\n" % rot((0.5, 0.5, 0.5)))
+PY
+out=$("$mesh" "$work/rot.poly" --size 0.2 --verify-tol 0 -o "$work/rot.vtu" --stats "$work/rot.json" 2>"$work/rot.err"); rc=$?
+if [ $rc = 3 ] && [[ "$out" == *"verify: FAIL"* ]] && grep -q "^gsse-mesh: verify: " "$work/rot.err" && [ ! -e "$work/rot.vtu" ] && [ ! -e "$work/rot.json" ]; then
+  ok "--verify-tol 0 on a rotated cube: FAIL, exit 3, '$(head -c 80 "$work/rot.err")...', nothing written"
+else bad "--verify-tol 0 on a rotated cube: exit $rc, files: $(ls "$work"/rot.* | tr '\n' ' ')"; fi
+out=$("$mesh" "$work/rot.poly" --size 0.2 --verify -o "$work/rot.vtu" --stats "$work/rot.json" 2>&1); rc=$?
+if [ $rc = 0 ] && [[ "$out" == *"verify: PASS"* ]] && [ -e "$work/rot.vtu" ] && [ -e "$work/rot.json" ]; then ok "--verify on the rotated cube: PASS, both files written"
+else bad "--verify on the rotated cube: exit $rc"; fi
+
 # --check: the good mesh, then broken copies of it
 out=$("$mesh" "$work/box.poly" --check "$work/m.node" 2>&1); rc=$?
 if [ $rc = 0 ] && [[ "$out" == *"check: PASS"* ]]; then ok "--check m.node: PASS, exit 0"; else bad "--check m.node: exit $rc: $out"; fi

@@ -455,6 +455,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     // against the input PLC itself, not the conformed boundary and labels the mesh was made from
     verify::options vo;
     vo.threads = o.threads;
+    vo.facet_tolerance = o.verify_tolerance;
     r.problems = verify::check(d, p, vo).problems;
     lap("verify");
   }

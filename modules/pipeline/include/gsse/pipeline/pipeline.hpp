@@ -14,6 +14,7 @@
 #include "gsse/container/domain.hpp"
 #include "gsse/container/plc.hpp"
 #include "gsse/front/point_creation.hpp"
+#include "gsse/verify/verify.hpp"
 
 namespace gsse::pipeline {
 
@@ -28,6 +29,7 @@ struct options {
   double too_far = front::creation_options{}.too_far;  // fill::rules: create points for faces whose apex ball exceeds too_far*H
   unsigned threads = 1;  // threads shared by the stages (0: every hardware thread, execution::thread_count)
   bool verify = false;   // run the library verifier (gsse::verify::check against the input PLC) at the end
+  double verify_tolerance = verify::options{}.facet_tolerance;  // the verifier's facet tolerance
   conformer::options conform{};
   std::function<void(const std::string&)> progress;  // stage messages, may be empty
 };
