@@ -49,8 +49,13 @@ std::optional<point<D>> segment_candidate(split_action a, const point<D>& p0, co
       const auto u = normalized<D>(far - *shell);
       if (!u) return std::nullopt;
       if (dn == 0) return *shell + shell_radius(df) * *u;
-      const double r = snap_to_shell(0.5 * (dn + df));  // a power of two, beyond the near end
-      if (!(r > dn * 1.1 && r < df)) return std::nullopt;
+      // the coarsest dyadic distance m 2^k inside, 10% of the subsegment clear of its ends: a
+      // power of two where there is one, else the midpoint of a shell interval, and so on, so
+      // that every edge at this vertex is split at the same distances
+      const double gap = 0.1 * (df - dn), lo = dn + gap, hi = df - gap;
+      if (!(lo < hi)) return std::nullopt;
+      const double r = dyadic_between(lo, hi);
+      if (!(r > dn && r < df)) return std::nullopt;
       return *shell + r * *u;
     }
     case split_action::project:
@@ -105,6 +110,17 @@ double shell_radius(double l) {
   int e = 0;
   std::frexp(2 * l / 3, &e);  // 2l/3 = m * 2^e, m in [0.5, 1)
   return std::ldexp(1.0, e - 1);
+}
+
+double dyadic_between(double lo, double hi) {
+  if (!(lo > 0) || !(hi >= lo) || !std::isfinite(hi)) return 0.5 * (lo + hi);
+  int e = 0;
+  std::frexp(hi, &e);  // hi < 2^e
+  for (double step = std::ldexp(1.0, e - 1);; step *= 0.5) {
+    const double m = std::ceil(lo / step);
+    if (m * step <= hi) return m * step;
+    if (step < hi * 1e-12) return 0.5 * (lo + hi);
+  }
 }
 
 double snap_to_shell(double d) {

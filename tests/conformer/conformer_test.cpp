@@ -243,3 +243,21 @@ BOOST_AUTO_TEST_CASE(post_check_agrees_with_the_oracle) {
     BOOST_TEST(mine == o.strictly_encroached, "2D: post-check " << mine.size() << " faces, oracle " << o.strictly_encroached.size());
   }
 }
+
+BOOST_AUTO_TEST_CASE(small_angles_at_both_ends_of_an_edge) {
+  // a 31 x 0.1 strip cut by its diagonal: the diagonal meets the bottom side at 0.18 degrees at
+  // one end and the top side at the other. With concentric shells about each small-angle vertex
+  // every edge there is split at the same dyadic distances, so the sides need O(log(31 / 0.1))
+  // points each; splits that do not match (midpoints of edges of different lengths) cascaded
+  // along the whole strip: 2,198 Steiner points before the dyadic shells, 51 with them. The
+  // bound is the theory's order with a generous constant: 4 points per halving per edge.
+  plc<2> p;
+  p.source = "strip";
+  p.points = {{0, 0}, {31, 0}, {31, 0.1}, {0, 0.1}};
+  p.edges = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 2}};
+  p.edge_markers = {0, 0, 0, 0, 0};
+  p.regions.push_back({{20, 0.02}, 1, -1, "below"});
+  p.regions.push_back({{10, 0.08}, 2, -1, "above"});
+  const std::size_t steiner = conform_and_check(p, {}, 0.0, "strip with a diagonal");
+  BOOST_TEST(steiner <= static_cast<std::size_t>(4 * 5 * std::log2(31 / 0.1)), steiner << " Steiner points");
+}

@@ -85,6 +85,32 @@ BOOST_AUTO_TEST_CASE(shell_splits_about_the_small_angle_end) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(dyadic_distances) {
+  // the coarsest m 2^k in [lo, hi]
+  BOOST_TEST(dyadic_between(3, 5) == 4.0);
+  BOOST_TEST(dyadic_between(5, 7) == 6.0);
+  BOOST_TEST(dyadic_between(0.54, 0.86) == 0.75);
+  BOOST_TEST(dyadic_between(0.3, 0.3125) == 0.3125);
+  const double r = dyadic_between(0.1, 0.1 + 1e-9);
+  BOOST_TEST((r >= 0.1 && r <= 0.1 + 1e-9));
+}
+
+BOOST_AUTO_TEST_CASE(shell_splits_edges_of_different_lengths_at_one_distance) {
+  // two subsegments away from the small-angle vertex (0,0), on edges of different lengths (whose
+  // midpoints differ): both are split at the same dyadic distance from it, so neither split
+  // encroaches the other edge's subsegment again (the cascade along edges meeting at a fraction
+  // of a degree, scad_example002, came from midpoints)
+  const point2 o{0, 0};
+  const std::array<point2, 2> s1{{{0.5, 0}, {0.9, 0}}}, s2{{{0.5 * 0.999, 0.5 * 0.0447}, {0.95 * 0.999, 0.95 * 0.0447}}};
+  const auto c1 = split_point(rule2(relation::on_incident_vertex), s1, {0.7, 0.01}, o, o);
+  const auto c2 = split_point(rule2(relation::on_incident_vertex), s2, {0.7, 0.02}, o, o);
+  BOOST_REQUIRE(c1);
+  BOOST_REQUIRE(c2);
+  BOOST_TEST((c1->action == split_action::shell && c2->action == split_action::shell));
+  BOOST_TEST(std::abs(distance(c1->at, o) - 0.75) < 1e-12);
+  BOOST_TEST(std::abs(distance(c2->at, o) - 0.75) < 1e-12);
+}
+
 BOOST_AUTO_TEST_CASE(a_rejected_candidate_falls_through_to_the_next_step) {
   const auto c = split_point(rule2(relation::free), seg, {0.3, 0.2}, {}, {}, [](const point2& q, split_action) { return q[0] != 0.3; });
   BOOST_REQUIRE(c);

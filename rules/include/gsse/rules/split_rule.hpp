@@ -73,6 +73,9 @@ std::optional<split_action> split_action_from(std::string_view s);
 /// powers of two are kept, and distances rounding left a hair below them), in world units. Shells are nested for every shared vertex, which is what
 /// makes mutual encroachment of small angles terminate.
 double snap_to_shell(double d);
+/// The coarsest dyadic number m 2^k in [lo, hi] (0 < lo <= hi): the split distance of the shell
+/// action, the same for every edge at a vertex whose subsegment spans it.
+double dyadic_between(double lo, double hi);
 /// The split of a subsegment of length l with one end at a small-angle vertex: the largest power
 /// of two not above 2l/3 (so in [l/3, 2l/3]), its distance from that vertex (Ruppert's concentric
 /// shells). Every edge at the vertex is split on the same spheres about it, so the ends of two
