@@ -4,7 +4,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <algorithm>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -12,13 +11,13 @@
 #include <variant>
 #include <vector>
 
+#include "gsse/io/boundary.hpp"
 #include "gsse/io/gmsh.hpp"
 #include "gsse/io/node_ele.hpp"
 #include "gsse/io/poly.hpp"
 #include "gsse/io/vtu.hpp"
 #include "gsse/pipeline/pipeline.hpp"
 #include "gsse/plc/region_points.hpp"
-#include "gsse/topology/incidence.hpp"
 
 namespace py = pybind11;
 
@@ -99,57 +98,22 @@ class mesh_result {
     }, d);
   }
   /// Boundary and interface faces once (oriented into the segment listed first, of lower number at
-  /// an interface), then marked faces inside a segment: (faces, markers, segment pairs).
+  /// an interface), then marked faces inside a segment: (faces, markers, segment pairs), as
+  /// gsse::io::boundary_faces gives them (and BASE.boundary.vtu holds them).
   py::tuple faces() const {
     return std::visit([](const auto& m) {
       constexpr std::size_t D = std::decay_t<decltype(m)>::dimension;
-      using face = std::array<gsse::vertex_id, D>;
-      std::map<face, int> marker;
-      for (const auto& f : m.marked_faces()) {
-        auto k = f.vertices;
-        std::sort(k.begin(), k.end());
-        marker[k] = f.marker;
-      }
-      struct row {
-        face f;
-        int a, b;
-      };
-      std::map<face, row> rows;  // sorted vertices -> first oriented face and its two sides
-      std::vector<face> order;
-      const auto& segs = m.segments();
-      for (const auto& s : segs)
-        for (const auto& fc : gsse::boundary_facets(s)) {
-          face f;
-          const auto vs = gsse::vertices(s, fc);
-          std::copy(vs.begin(), vs.end(), f.begin());
-          auto k = f;
-          std::sort(k.begin(), k.end());
-          auto [it, fresh] = rows.try_emplace(k, row{f, s.number(), 0});
-          if (fresh) {
-            order.push_back(k);
-          } else if (s.number() < it->second.a) {
-            it->second = {f, s.number(), it->second.a};
-          } else {
-            it->second.b = s.number();
-          }
-        }
-      for (const auto& f : m.marked_faces()) {
-        auto k = f.vertices;
-        std::sort(k.begin(), k.end());
-        if (rows.try_emplace(k, row{f.vertices, 0, 0}).second) order.push_back(k);
-      }
-      py::array_t<std::int64_t> fa({order.size(), D});
-      py::array_t<std::int32_t> ma(order.size()), sa({order.size(), std::size_t{2}});
+      const auto bf = gsse::io::boundary_faces(m);
+      py::array_t<std::int64_t> fa({bf.size(), D});
+      py::array_t<std::int32_t> ma(bf.size()), sa({bf.size(), std::size_t{2}});
       auto F = fa.template mutable_unchecked<2>();
       auto M = ma.template mutable_unchecked<1>();
       auto S = sa.template mutable_unchecked<2>();
-      for (std::size_t i = 0; i < order.size(); ++i) {
-        const auto& r = rows.at(order[i]);
-        for (std::size_t k = 0; k < D; ++k) F(i, k) = r.f[k];
-        const auto mk = marker.find(order[i]);
-        M(i) = mk == marker.end() ? 0 : mk->second;
-        S(i, 0) = r.a;
-        S(i, 1) = r.b;
+      for (std::size_t i = 0; i < bf.size(); ++i) {
+        for (std::size_t k = 0; k < D; ++k) F(i, k) = bf[i].vertices[k];
+        M(i) = bf[i].marker;
+        S(i, 0) = bf[i].segment;
+        S(i, 1) = bf[i].other;
       }
       return py::make_tuple(fa, ma, sa);
     }, d);

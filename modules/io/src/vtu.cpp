@@ -8,6 +8,7 @@
 #include <typeinfo>
 
 #include "facets.hpp"
+#include "gsse/io/boundary.hpp"
 #include "gsse/io/atomic_file.hpp"
 
 namespace gsse::io {
@@ -179,31 +180,24 @@ void write_vtu(const domain<D>& d, const std::string& path) {
     }
 
   // the companion: boundary, interface and marked faces
-  const auto outer = detail::outer_facets(d, path);
-  const detail::marker_lookup<D> marker(d);
-  const auto inner = detail::inner_marked(d, outer);
+  const auto bfaces = boundary_faces(d, path);
   std::string fconn, foffsets, ftypes, fmarker, fseg, fother;
   off = 0;
-  auto face = [&](const std::array<vertex_id, D>& f, int m, int a, int b) {
-    for (auto v : f) append(fconn, static_cast<std::int64_t>(v));
+  for (const auto& f : bfaces) {
+    for (auto v : f.vertices) append(fconn, static_cast<std::int64_t>(v));
     append(foffsets, off += static_cast<std::int64_t>(D));
     append(ftypes, static_cast<std::uint8_t>(D == 3 ? 5 : 3));  // VTK_TRIANGLE, VTK_LINE
-    append(fmarker, static_cast<std::int32_t>(m));
-    append(fseg, static_cast<std::int32_t>(a));
-    append(fother, static_cast<std::int32_t>(b));
-  };
-  for (const auto& f : outer)
-    face(f.vertices, marker.empty() ? 0 : marker(f.vertices), segs[f.first].number(),
-         f.second < 0 ? 0 : segs[static_cast<std::size_t>(f.second)].number());
-  // a marked face inside a segment: the segment of one of its cells is not at hand here; 0, 0
-  for (const auto& [f, m] : inner) face(f, m, 0, 0);
+    append(fmarker, static_cast<std::int32_t>(f.marker));
+    append(fseg, static_cast<std::int32_t>(f.segment));
+    append(fother, static_cast<std::int32_t>(f.other));
+  }
   const std::vector<data_array> farrays{{true, "marker", "Int32", 1, fmarker},
                                         {true, "segment", "Int32", 1, fseg},
                                         {true, "other_segment", "Int32", 1, fother}};
 
   atomic_file f(path), fb(boundary_vtu_path(path));
   write_grid(f.stream(), points, pts.size(), ncells, arrays, conn, offsets, types);
-  write_grid(fb.stream(), points, pts.size(), outer.size() + inner.size(), farrays, fconn, foffsets, ftypes);
+  write_grid(fb.stream(), points, pts.size(), bfaces.size(), farrays, fconn, foffsets, ftypes);
   f.commit();
   fb.commit();
 }
