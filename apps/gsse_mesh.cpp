@@ -1,7 +1,9 @@
 // gsse-mesh: PLC in, per-segment conforming Delaunay mesh out.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -17,6 +19,7 @@
 #include "gsse/pipeline/pipeline.hpp"
 #include "gsse/plc/region_points.hpp"
 #include "gsse/rules/defaults.hpp"
+#include "gsse/sizing/inputs.hpp"
 #include "gsse/verify/verify.hpp"
 
 namespace {
@@ -26,13 +29,20 @@ void usage(std::FILE* to) {
       "usage: gsse-mesh INPUT [-o OUTPUT] [--size H] [--cloud POINTS.node] [--threads N] [--verify]\n"
       "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
       "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly] [--msh 4.1|2.2] [--verify-tol R]\n"
+      "                 [--grade G] [--no-feature-size]\n"
       "       gsse-mesh INPUT --check MESH [--threads N] [--quiet] [--verify-tol R]\n"
       "  INPUT    TetGen .poly/.smesh (3D), Triangle .poly (2D), or a closed surface: OFF, STL,\n"
       "           Gmsh .msh surface mesh (its volumes become segments)\n"
       "  -o       output mesh: .vtu, .msh, or .node (writes .node/.ele/.face beside it); boundary\n"
       "           and interface faces keep the input's facet markers (docs/io.md)\n"
       "  --msh    Gmsh format version of a .msh output: 4.1 (default) or 2.2 (ASCII, as devsim reads)\n"
-      "  --size   target element size H (default: none, boundary conforming only)\n"
+      "  --size   target element size H (default: none, boundary conforming only); uniform unless\n"
+      "           graded sizing is on (--grade, sidecar sizes, region volumes)\n"
+      "  --grade  graded sizing (modules/sizing/README.md): neighbouring element sizes differ by at\n"
+      "           most about the factor G (> 1, default 1.3); on by itself from the local feature\n"
+      "           size, the .poly regions' maximum volumes and the sizing keys of INPUT's BASE.json\n"
+      "           sidecar (per-segment sizes, refinement boxes, interface layers, background mesh)\n"
+      "  --no-feature-size  leave the local feature size out of the size field\n"
       "  --cloud  extra interior points (.node); points outside every segment are dropped\n"
       "  --verify check the mesh against the input (valid, conforming, labelled, Delaunay); if it\n"
       "           fails: exit status 3, no output written (neither -o nor --stats)\n"
@@ -55,7 +65,8 @@ void usage(std::FILE* to) {
 
 struct args {
   std::string input, output, cloud, stats, rules, fill, plc_out, check;
-  double size = 0, verify_tol = gsse::verify::options{}.facet_tolerance;
+  double size = 0, verify_tol = gsse::verify::options{}.facet_tolerance, grade = 0;
+  bool no_feature = false;
   unsigned threads = 1;
   bool verify = false, verify_tol_given = false, quiet = false, no_merge = false, msh22 = false;
   std::size_t max_steiner = gsse::conformer::options{}.max_steiner;
@@ -98,6 +109,21 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.verify = a.verify;
   o.verify_tolerance = a.verify_tol;
   o.conform.max_steiner = a.max_steiner;
+  {
+    // the size field: the sidecar's sizing keys, the regions' volumes, --grade
+    const std::string side = gsse::io::base_of(a.input) + ".json";
+    const auto table = gsse::io::read_sidecar(side);
+    gsse::sizing::spec<D> sp;
+    gsse::sizing::add_sidecar(sp, table.sizing, p, side);
+    if (a.grade > 0) sp.grade = a.grade;
+    sp.feature_size = !a.no_feature;
+    const bool volumes = std::any_of(p.regions.begin(), p.regions.end(), [](const auto& r) { return r.max_volume > 0; });
+    o.graded = a.grade > 0 || !table.sizing.empty() || volumes;
+    if constexpr (D == 2)
+      o.sizing2 = sp;
+    else
+      o.sizing3 = sp;
+  }
   o.conform.merge_coplanar = !a.no_merge;
   // GSSE_CONFORM_TRACE=1: the conformer's rounds on stderr (the library prints nothing itself)
   if (const char* t = std::getenv("GSSE_CONFORM_TRACE"); t && std::string(t) != "0" && *t)
@@ -120,6 +146,8 @@ int run(const gsse::plc<D>& p, const args& a) {
   if (a.fill == "rules") o.interior = gsse::pipeline::fill::rules;
   if (o.interior == gsse::pipeline::fill::rules && !(a.size > 0))
     throw std::runtime_error("--fill rules needs --size (the rules work in units of the target size)");
+  if (o.interior == gsse::pipeline::fill::rules && o.graded)
+    throw std::runtime_error("--fill rules works with a uniform --size only, not with graded sizing (--grade, sidecar sizes, region volumes)");
   if (tty) o.progress = [](const std::string& s) { std::fprintf(stderr, "\r\033[Kgsse-mesh: %s", s.c_str()); };
   gsse::pipeline::report r;
   auto d = gsse::pipeline::mesh(p, cloud, o, r);
@@ -139,6 +167,7 @@ int run(const gsse::plc<D>& p, const args& a) {
       throw std::runtime_error(out + ": unknown output format (use .vtu, .msh or .node)");
     r.times.push_back({"write", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});
   }
+  const auto q = (!a.quiet || !a.stats.empty()) ? gsse::pipeline::measure(d) : gsse::pipeline::quality{};
   if (!a.quiet) {
     std::printf("%s: %zuD, %zu points (%zu volume, %zu dropped outside, %zu boundary Steiner), %zu segments\n",
                 p.source.c_str(), D, d.points().size(), r.volume_points, r.dropped_points, r.steiner, d.segments().size());
@@ -148,6 +177,9 @@ int run(const gsse::plc<D>& p, const args& a) {
                   "               %zu outside, %zu encroaching, %zu in a circumsphere; %zu reused a point)\n",
                   c.created, c.too_far, c.no_rule, c.outside, c.encroaching, c.in_circumball, c.not_needed);
     }
+    if (!r.uniform_size)
+      std::printf("  sizing: graded (grade %.3g), smallest size %.4g, %zu boundary pieces carry the local terms\n",
+                  D == 3 ? o.sizing3.grade : o.sizing2.grade, r.min_size, r.size_sources);
     for (const auto& s : d.segments()) {
       const auto& c = s.cell_data();
       std::vector<gsse::vertex_id> used;
@@ -157,9 +189,18 @@ int run(const gsse::plc<D>& p, const args& a) {
       std::printf("  segment %2d %-16s %8zu vertices %9zu %s\n", s.number(), s.name().c_str(), used.size(), c.size(),
                   D == 3 ? "tetrahedra" : "triangles");
     }
-    const auto q = gsse::pipeline::measure(d);
     std::printf("  quality: radius-edge ratio min %.3f median %.3f max %.3g; %s angle min %.2f max %.2f degrees\n",
                 q.min_ratio, q.median_ratio, q.max_ratio, D == 3 ? "dihedral" : "plane", q.min_angle, q.max_angle);
+    std::printf("           %zu elements with an angle below 5 degrees, %zu below 10, %zu above 170\n", q.below5, q.below10,
+                q.above170);
+    std::printf("           radius-edge");
+    for (std::size_t k = 0; k < q.ratio_histogram.size(); ++k) {
+      if (k < q.ratio_bounds.size())
+        std::printf(" <%g: %zu", q.ratio_bounds[k], q.ratio_histogram[k]);
+      else
+        std::printf(", %g and above: %zu", q.ratio_bounds.back(), q.ratio_histogram[k]);
+    }
+    std::printf("\n");
     for (const auto& t : r.times) std::printf("  %-8s %8.3f s\n", t.stage.c_str(), t.seconds);
   }
   if (!a.stats.empty() && problems.empty()) {  // a failed verification writes no file at all
@@ -172,7 +213,17 @@ int run(const gsse::plc<D>& p, const args& a) {
        << ", \"created_points\": " << r.creation.created << ", \"times\": {";
     for (std::size_t k = 0; k < r.times.size(); ++k)
       js << (k ? ", " : "") << "\"" << r.times[k].stage << "\": " << r.times[k].seconds;
-    js << "}, \"verified\": " << (a.verify ? "true" : "null") << "}\n";
+    js << "}, \"quality\": {\"elements\": " << q.elements << ", \"radius_edge\": {\"min\": " << q.min_ratio
+       << ", \"median\": " << q.median_ratio << ", \"max\": " << q.max_ratio << ", \"histogram\": [";
+    for (std::size_t k = 0; k < q.ratio_histogram.size(); ++k)
+      js << (k ? ", " : "") << "{\"below\": " << (k < q.ratio_bounds.size() ? std::to_string(q.ratio_bounds[k]) : "null")
+         << ", \"elements\": " << q.ratio_histogram[k] << "}";
+    js << "]}, \"angle\": {\"min\": " << q.min_angle << ", \"max\": " << q.max_angle << ", \"below_5\": " << q.below5
+       << ", \"below_10\": " << q.below10 << ", \"above_170\": " << q.above170 << ", \"smallest_by_10_degrees\": [";
+    for (std::size_t k = 0; k < q.angle_histogram.size(); ++k) js << (k ? ", " : "") << q.angle_histogram[k];
+    js << "]}, \"uniform_size\": " << (r.uniform_size ? "true" : "false")
+       << ", \"min_size\": " << r.min_size << "}";
+    js << ", \"verified\": " << (a.verify ? "true" : "null") << "}\n";
   }
   return verdict(problems, a.verify && !a.quiet, "verify");
 }
@@ -229,6 +280,11 @@ int main(int argc, char** argv) {
         a.verify_tol = std::stod(value());
         if (!(a.verify_tol >= 0 && a.verify_tol < 1)) throw std::invalid_argument("--verify-tol must be in [0, 1)");
         a.verify_tol_given = true;
+      } else if (s == "--grade") {
+        a.grade = std::stod(value());
+        if (!(a.grade > 1) || !std::isfinite(a.grade)) throw std::invalid_argument("--grade must be a number above 1");
+      } else if (s == "--no-feature-size") {
+        a.no_feature = true;
       } else if (s == "--verify") {
         a.verify = true;
       } else if (s == "--no-merge") {

@@ -1,4 +1,5 @@
 #include "gsse/conformer/conformer.hpp"
+#include "gsse/sizing/place_points.hpp"
 
 #include <algorithm>
 #include <functional>
@@ -123,6 +124,24 @@ class state {
 
   boundary<D>& out() { return out_; }
   const plc<D>& input() const { return plc_; }
+
+  /// A size field is set (options::local_size2/3).
+  bool graded() const {
+    if constexpr (D == 2)
+      return static_cast<bool>(opt_.local_size2);
+    else
+      return static_cast<bool>(opt_.local_size3);
+  }
+  bool sized() const { return opt_.size > 0 || graded(); }
+  /// The target size at q: the size field's value, or the uniform size (0: none).
+  double size_at(const point<D>& q) const {
+    if constexpr (D == 2) {
+      if (opt_.local_size2) return opt_.local_size2(q);
+    } else {
+      if (opt_.local_size3) return opt_.local_size3(q);
+    }
+    return opt_.size;
+  }
   std::vector<plc_edge>& edges() { return edges_; }
 
   vertex_id add_point(const point<D>& q, home h) {
@@ -205,7 +224,7 @@ class state {
       std::vector<std::pair<double, point<D>>> at;  // (distance from u, point)
       if (ru > 0) at.push_back({ru, on_edge(pu + (ru / len) * (pv - pu), e)});
       if (rv > 0) at.push_back({len - rv, on_edge(pv + (rv / len) * (pu - pv), e)});
-      if (opt_.size > 0) {
+      if (opt_.size > 0 && !graded()) {
         // from the lexicographically smaller end, so parallel edges get identical (mirror) splits
         point<D> a = pu, b = pv;
         const bool flip = lex_less(b, a);
@@ -215,6 +234,34 @@ class state {
           const double t = static_cast<double>(i) / n, s = (flip ? 1 - t : t) * len;
           if ((ru > 0 && s < 1.5 * ru) || (rv > 0 && len - s < 1.5 * rv)) continue;
           at.push_back({s, on_edge(a + t * (b - a), e, len / n)});
+        }
+      } else if (graded()) {
+        // graded: n pieces at equal steps of the integral of 1/h along the edge (sampled a
+        // quarter of the local size apart, trapezoids), from the lexicographically smaller end
+        point<D> a = pu, b = pv;
+        const bool flip = lex_less(b, a);
+        if (flip) std::swap(a, b);
+        std::vector<std::pair<double, double>> cum{{0.0, 0.0}};  // (t, integral up to t)
+        double t = 0, ha = size_at(a);
+        while (t < 1) {
+          const double step = std::max(0.25 * ha / len, 1e-6);
+          const double t2 = std::min(1.0, t + step);
+          const double hb = size_at(a + t2 * (b - a));
+          cum.push_back({t2, cum.back().second + 0.5 * (t2 - t) * len * (1 / ha + 1 / hb)});
+          t = t2, ha = hb;
+        }
+        const double total = cum.back().second;
+        const auto n = static_cast<long>(std::ceil(total - 1e-9));
+        std::size_t k = 1;
+        for (long i = 1; i < n; ++i) {
+          const double want = total * static_cast<double>(i) / static_cast<double>(n);
+          while (k + 1 < cum.size() && cum[k].second < want) ++k;
+          const auto [t0, c0] = cum[k - 1];
+          const auto [t1, c1] = cum[k];
+          const double ti = c1 > c0 ? t0 + (t1 - t0) * (want - c0) / (c1 - c0) : t1;
+          const double s = (flip ? 1 - ti : ti) * len;
+          if ((ru > 0 && s < 1.5 * ru) || (rv > 0 && len - s < 1.5 * rv)) continue;
+          at.push_back({s, on_edge(a + ti * (b - a), e, len / static_cast<double>(n))});
         }
       }
       std::sort(at.begin(), at.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
@@ -721,7 +768,7 @@ class state3 : public state<3> {
           if (wn != 0) r = std::min(r, h / 3);
         }
       });
-      if (opt_.size > 0) r = std::min(r, opt_.size / 2);  // the pieces inside are not split for size
+      if (sized()) r = std::min(r, size_at(p[v]) / 2);  // the pieces inside are not split for size
       if (r > 0 && r < 1e300) ball_[v] = rules::snap_to_shell(r * (1 - 1e-8));
     }
   }
@@ -1200,10 +1247,12 @@ class state3 : public state<3> {
         // near-right triangles where the lattice meets boundary strips and merged facets' seams,
         // a cascade of one row per round (docs/design-decisions.md)
         bool too_big = false;
-        if (opt_.size > 0) {
+        if (sized()) {
           const point3 u = p[T[1]] - p[T[0]], v = p[T[2]] - p[T[0]], z = p[T[2]] - p[T[1]], n = cross(u, v);
-          // R^2 = |u|^2 |v|^2 |z|^2 / (4 |n|^2) against size^2 / 3
-          too_big = 3 * dot(u, u) * dot(v, v) * dot(z, z) > 4 * dot(n, n) * opt_.size * opt_.size * (1 + 2e-9);
+          // R^2 = |u|^2 |v|^2 |z|^2 / (4 |n|^2) against size^2 / 3 (graded: the size at the
+          // circumcentre)
+          const double h = graded() ? size_at(cc) : opt_.size;
+          too_big = 3 * dot(u, u) * dot(v, v) * dot(z, z) > 4 * dot(n, n) * h * h * (1 + 2e-9);
         }
         if (y != no_vertex || too_big) mine.push_back({w.f, static_cast<std::uint32_t>(t), y});
       }
@@ -1507,6 +1556,19 @@ class state3 : public state<3> {
     return splits;
   }
 
+  /// A facet's in-plane orthonormal frame for its lattices, from the normal only: e1 = unit x
+  /// (least axis), flipped with the normal so that the two orientations of a plane get the same
+  /// frame (parallel facets then get the same lattice).
+  static std::pair<point3, point3> lattice_frame(const facet_state& S) {
+    double sign = 1;
+    for (std::size_t k = 0; k < 3; ++k)
+      if (S.unit[k] != 0) {
+        sign = S.unit[k] > 0 ? 1.0 : -1.0;
+        break;
+      }
+    return {sign * S.e1, S.e2};
+  }
+
   /// Sizing: a triangular lattice of spacing `size` in each facet's plane, clipped to the facet
   /// and kept size/2 away from its boundary vertices. Exact on axis-aligned facets (the constant
   /// coordinate is copied), within rounding on slanted ones. The lattice is global: its frame
@@ -1530,15 +1592,7 @@ class state3 : public state<3> {
       if (S.sides.empty()) return;
       const auto vs = facet_vertices(f);
       const point3 o = out_.points[vs[0]];
-      // in-plane orthonormal frame from the normal only: e1 = unit x (least axis), flipped with
-      // the normal so that the two orientations of a plane get the same frame
-      double sign = 1;
-      for (std::size_t k = 0; k < 3; ++k)
-        if (S.unit[k] != 0) {
-          sign = S.unit[k] > 0 ? 1.0 : -1.0;
-          break;
-        }
-      const point3 u = sign * S.e1, v = S.e2;
+      const auto [u, v] = lattice_frame(S);
       const double ao = dot(o - origin, u), bo = dot(o - origin, v);
       double ulo = 1e300, uhi = -1e300, vlo = 1e300, vhi = -1e300;
       for (vertex_id w : vs) {
@@ -1576,16 +1630,68 @@ class state3 : public state<3> {
       for (const auto& q : seeds[f]) facets_[f].interior.push_back(add_point(q, {home::facet, f}));
   }
 
+  /// Graded sizing: each facet seeded with the size field's points in its plane (the dyadic
+  /// lattices of sizing::place_points, triangular, in the same global frame as seed_facets), kept
+  /// half their spacing from the facet's boundary vertices. Without it the facets would be
+  /// refined from their corners by circumcentres, a few rows per round.
+  void seed_facets_graded() {
+    const point3 origin = box_lo_;
+    std::vector<std::vector<point3>> seeds(facets_.size());
+    std::vector<std::uint32_t> ids(facets_.size());
+    std::iota(ids.begin(), ids.end(), 0u);
+    for_each(execution::par(opt_.threads), ids, [&](std::uint32_t f) {
+      const auto& S = facets_[f];
+      if (S.sides.empty()) return;
+      const auto vs = facet_vertices(f);
+      const auto [u, v] = lattice_frame(S);
+      const point3 o = out_.points[vs[0]];
+      const double ao = dot(o - origin, u), bo = dot(o - origin, v);
+      auto lift = [&](const point2& x) {
+        point3 q = o + (x[0] - ao) * u + (x[1] - bo) * v;
+        for (std::size_t k = 0; k < 3; ++k)
+          if (S.constant[k]) q[k] = S.constant_value[k];
+        return q;
+      };
+      sizing::aabb<2> box = sizing::aabb<2>::empty();
+      std::vector<sizing::aabb<2>> at(vs.size());
+      for (std::size_t i = 0; i < vs.size(); ++i) {
+        const point3 d = out_.points[vs[i]] - origin;
+        const point2 x{dot(d, u), dot(d, v)};
+        box.add(x);
+        at[i] = {x, x};
+      }
+      const sizing::box_tree<2> corners(std::move(at), std::vector<double>(vs.size(), 0.0));
+      sizing::placement<2> where;
+      where.segment_of = [&](const point2& x) { return locate(f, lift(x)) >= 0 ? 1 : sizing::no_segment; };
+      where.clear = [&](const point2& x, double keep) {
+        return corners.visit([&](const sizing::aabb<2>& b) { return b.distance2(x) < keep * keep; },
+                             [&](std::uint32_t) { return false; });
+      };
+      const double extent = std::sqrt(squared_distance(box.lo, box.hi));
+      const double d0 = opt_.size > 0 ? std::min(opt_.size, extent) : 0.5 * extent;
+      const auto pts = sizing::place_points<2>([&](const point2& x, int) { return size_at(lift(x)); }, d0, box, where, 1);
+      std::vector<point3> mine;
+      mine.reserve(pts.size());
+      for (const auto& x : pts) mine.push_back(lift(x));
+      seeds[f] = std::move(mine);
+    }, [&](std::uint32_t f) { return static_cast<double>(boundary_size(f)); });
+    for (std::uint32_t f = 0; f < facets_.size(); ++f)
+      for (const auto& q : seeds[f]) facets_[f].interior.push_back(add_point(q, {home::facet, f}));
+  }
+
   std::size_t vertex_count(std::uint32_t f) const { return boundary_size(f) + facets_[f].interior.size(); }
 
   boundary<3> run() {
     presplit_edges();
-    if (opt_.size > 0) {
+    if (sized()) {
       conform_segments();
       std::vector<std::uint32_t> all(facets_.size());
       std::iota(all.begin(), all.end(), 0u);
       triangulate_all(all);
-      seed_facets();
+      if (graded())
+        seed_facets_graded();
+      else
+        seed_facets();
     }
     std::vector<std::size_t> seen(facets_.size(), 0);
     const bool trace = trace_on_;

@@ -1,6 +1,7 @@
 #include "gsse/io/sidecar.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -62,6 +63,74 @@ struct json_scan {
     i = static_cast<std::size_t>(p - s.data());
     return v;
   }
+  // a JSON value (object, array, string, number, true/false/null), for the sizing keys
+  struct value {
+    enum kind_t { object, array, string, number, literal } kind = literal;
+    std::string text;  // string
+    double num = 0;    // number
+    std::vector<std::pair<std::string, value>> members;  // object
+    std::vector<value> items;                            // array
+    std::size_t pos = 0;
+    const value* get(const std::string& k) const {
+      for (const auto& [n, v] : members)
+        if (n == k) return &v;
+      return nullptr;
+    }
+  };
+  value value_at(std::size_t& i, int depth = 0) const {
+    if (depth > 32) fail(i, "nested too deeply");
+    i = skip_ws(i);
+    value v;
+    v.pos = i;
+    if (i >= s.size()) fail(i, "expected a value");
+    if (s[i] == '"') {
+      v.kind = value::string;
+      v.text = string_at(i);
+    } else if (s[i] == '{' || s[i] == '[') {
+      const bool obj = s[i] == '{';
+      const char close = obj ? '}' : ']';
+      v.kind = obj ? value::object : value::array;
+      i = skip_ws(i + 1);
+      if (i < s.size() && s[i] == close) {
+        ++i;
+        return v;
+      }
+      while (true) {
+        i = skip_ws(i);
+        if (obj) {
+          std::string k = string_at(i);
+          i = skip_ws(i);
+          if (i >= s.size() || s[i] != ':') fail(i, "expected ':'");
+          ++i;
+          v.members.emplace_back(std::move(k), value_at(i, depth + 1));
+        } else {
+          v.items.push_back(value_at(i, depth + 1));
+        }
+        i = skip_ws(i);
+        if (i < s.size() && s[i] == ',') {
+          ++i;
+          continue;
+        }
+        if (i < s.size() && s[i] == close) {
+          ++i;
+          return v;
+        }
+        fail(i, std::string("expected ',' or '") + close + "'");
+      }
+    } else if (s.compare(i, 4, "true") == 0 || s.compare(i, 4, "null") == 0 || s.compare(i, 5, "false") == 0) {
+      i += s[i] == 'f' ? 5 : 4;
+    } else {
+      v.kind = value::number;
+      auto [p, ec] = std::from_chars(s.data() + i, s.data() + s.size(), v.num);
+      if (ec != std::errc() || !std::isfinite(v.num)) fail(i, "expected a number");
+      i = static_cast<std::size_t>(p - s.data());
+    }
+    return v;
+  }
+  double positive(const value& v, const std::string& what) const {
+    if (v.kind != value::number || !(v.num > 0)) fail(v.pos, what + " must be a positive number");
+    return v.num;
+  }
   template <class F>
   void array_at(std::size_t i, F item) const {
     if (i >= s.size() || s[i] != '[') fail(i, "expected '['");
@@ -89,6 +158,62 @@ std::string quoted(const std::string& n) {
     r += c;
   }
   return r + "\"";
+}
+
+void read_sizing(const json_scan& j, sizing_table& t) {
+  using value = json_scan::value;
+  if (auto i = j.find_key("sizes"); i != std::string::npos) {
+    const value v = j.value_at(i);
+    if (v.kind != value::object) j.fail(v.pos, "\"sizes\" must be an object {\"<segment>\": <size>, ...}");
+    for (const auto& [name, h] : v.members) t.sizes.push_back({name, j.positive(h, "the size of segment '" + name + "'"), j.line_at(h.pos)});
+  }
+  if (auto i = j.find_key("refine"); i != std::string::npos) {
+    const value v = j.value_at(i);
+    if (v.kind != value::array) j.fail(v.pos, "\"refine\" must be an array of {\"lo\": [..], \"hi\": [..], \"size\": h}");
+    for (const auto& b : v.items) {
+      if (b.kind != value::object) j.fail(b.pos, "a refinement box must be an object");
+      sizing_table::box box;
+      box.line = j.line_at(b.pos);
+      for (const char* key : {"lo", "hi"}) {
+        const value* c = b.get(key);
+        if (!c || c->kind != value::array || c->items.size() < 2 || c->items.size() > 3)
+          j.fail(b.pos, std::string("a refinement box needs \"") + key + "\": [x, y] or [x, y, z]");
+        for (const auto& x : c->items) {
+          if (x.kind != value::number) j.fail(x.pos, "expected a number");
+          (key[0] == 'l' ? box.lo : box.hi).push_back(x.num);
+        }
+      }
+      if (box.lo.size() != box.hi.size()) j.fail(b.pos, "\"lo\" and \"hi\" have different dimensions");
+      for (std::size_t k = 0; k < box.lo.size(); ++k)
+        if (box.lo[k] > box.hi[k]) j.fail(b.pos, "\"lo\" is above \"hi\" in coordinate " + std::to_string(k + 1));
+      const value* h = b.get("size");
+      if (!h) j.fail(b.pos, "a refinement box needs \"size\"");
+      box.size = j.positive(*h, "a refinement box's size");
+      t.boxes.push_back(std::move(box));
+    }
+  }
+  if (auto i = j.find_key("interfaces"); i != std::string::npos) {
+    const value v = j.value_at(i);
+    if (v.kind != value::array) j.fail(v.pos, "\"interfaces\" must be an array of {\"between\": [a, b], \"size\": h}");
+    for (const auto& e : v.items) {
+      const value* w = e.kind == value::object ? e.get("between") : nullptr;
+      if (!w || w->kind != value::array || w->items.size() != 2 || w->items[0].kind != value::string ||
+          w->items[1].kind != value::string)
+        j.fail(e.pos, "an interface needs \"between\": [\"<segment>\", \"<segment>\"]");
+      const value* h = e.get("size");
+      if (!h) j.fail(e.pos, "an interface needs \"size\"");
+      t.interfaces.push_back({w->items[0].text, w->items[1].text, j.positive(*h, "an interface's size"), j.line_at(e.pos)});
+    }
+  }
+  if (auto i = j.find_key("background"); i != std::string::npos) {
+    t.background = j.string_at(i);
+    if (t.background.empty()) j.fail(i, "empty \"background\" path");
+  }
+  if (auto i = j.find_key("grade"); i != std::string::npos) {
+    const value v = j.value_at(i);
+    if (v.kind != value::number || !(v.num > 1)) j.fail(v.pos, "\"grade\" must be a number above 1");
+    t.grade = v.num;
+  }
 }
 
 }  // namespace
@@ -155,6 +280,7 @@ segment_table read_sidecar(const std::string& json_path) {
     }
     if (i >= s.size()) j.fail(i, "unterminated \"facets\" object");
   }
+  read_sizing(j, t.sizing);
   if (auto i = j.find_key("face_marker_base"); i != std::string::npos) {
     const long v = j.integer_at(i);
     if (v < 0 || v > 1'000'000'000) j.fail(i, "face_marker_base out of range");

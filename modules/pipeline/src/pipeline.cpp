@@ -12,6 +12,7 @@
 #include <map>
 #include <numbers>
 #include <numeric>
+#include <memory>
 #include <set>
 
 #include "gsse/front/front_mesher.hpp"
@@ -19,6 +20,8 @@
 #include "gsse/geometry/hash_grid.hpp"
 #include "gsse/geometry/predicates.hpp"
 #include "gsse/plc/intersections.hpp"
+#include "gsse/sizing/distance.hpp"
+#include "gsse/sizing/place_points.hpp"
 #include "gsse/rules/defaults.hpp"
 #include "gsse/topology/incidence.hpp"
 #include "gsse/traversal/for_each.hpp"
@@ -224,35 +227,107 @@ void insert_bounds(hash_grid<D>& g, std::uint32_t id, const std::vector<point<D>
   g.insert_box(id, lo, hi);
 }
 
-}  // namespace
-
+/// The unsized conformed boundary (PLC facets, conformed, no size splits) and a coarse mesh of
+/// it: it bounds the same surface as the sized boundary at a fraction of the cost, and locates
+/// points exactly (point-in-simplex) for the interior point placement and the size field.
 template <std::size_t D>
-std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, const std::vector<point<D>>& cloud,
-                                                 std::size_t& dropped, const conformer::options& co,
-                                                 bool lattice) const {
-  dropped = 0;
-  if ((h <= 0 || !lattice) && cloud.empty()) return {};
-  // A coarse mesh of the boundary alone locates candidate points exactly (point-in-simplex).
-  // the unsized boundary (PLC facets, conformed, no size splits) bounds the same surface as the
-  // sized one at a fraction of the cost: it serves the point location and the keep-off distance
-  conformer::options unsized = co;
-  unsized.size = 0;
-  auto b = conformer::conform(p, {}, unsized);
-  const auto l = conformer::label(b, p, co.threads);
-  std::vector<cell_t<D>> all;  // the coarse mesh's cells, every region's pieces in turn
-  for (const auto& region : wrap_pieces(b.points, b, l, co.threads))
-    for (const auto& cs : region) all.insert(all.end(), cs.begin(), cs.end());
-  point<D> lo = b.points[0], hi = b.points[0];
-  for (const auto& q : b.points)
-    for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
-  // bucket coarse cells by bounding box
-  const double ext = distance(lo, hi);
-  const double cell = std::max(ext / std::pow(static_cast<double>(all.size() + 1), 1.0 / D), 1e-300);
-  hash_grid<D> buckets(lo, cell);
-  for (std::uint32_t c = 0; c < all.size(); ++c) insert_bounds(buckets, c, b.points, all[c]);
-  auto in_segment = [&](const point<D>& q) {
-    return !buckets.visit_ring(q, 0, [&](std::uint32_t c) { return !inside_cell(b.points, all[c], q); });
+struct coarse_model {
+  conformer::boundary<D> b;
+  conformer::labelling l;
+  std::vector<cell_t<D>> cells;
+  std::vector<int> cell_region;  // region index of each cell
+  point<D> lo{}, hi{};
+  std::unique_ptr<hash_grid<D>> buckets;
+
+  coarse_model(const plc<D>& p, const conformer::options& co) {
+    conformer::options unsized = co;
+    unsized.size = 0;
+    unsized.local_size2 = nullptr;
+    unsized.local_size3 = nullptr;
+    b = conformer::conform(p, {}, unsized);
+    l = conformer::label(b, p, co.threads);
+    int r = 0;
+    for (const auto& region : wrap_pieces(b.points, b, l, co.threads)) {
+      for (const auto& cs : region) {
+        cells.insert(cells.end(), cs.begin(), cs.end());
+        cell_region.insert(cell_region.end(), cs.size(), r);
+      }
+      ++r;
+    }
+    lo = hi = b.points[0];
+    for (const auto& q : b.points)
+      for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+    // bucket coarse cells by bounding box
+    const double ext = distance(lo, hi);
+    const double cell = std::max(ext / std::pow(static_cast<double>(cells.size() + 1), 1.0 / D), 1e-300);
+    buckets = std::make_unique<hash_grid<D>>(lo, cell);
+    for (std::uint32_t c = 0; c < cells.size(); ++c) insert_bounds(*buckets, c, b.points, cells[c]);
+  }
+  /// Region index of the coarse cell holding q, or -1.
+  int region_of(const point<D>& q) const {
+    int found = -1;
+    buckets->visit_ring(q, 0, [&](std::uint32_t c) {
+      if (!inside_cell(b.points, cells[c], q)) return true;
+      found = cell_region[c];
+      return false;
+    });
+    return found;
+  }
+  bool in_segment(const point<D>& q) const { return region_of(q) >= 0; }
+};
+
+/// The user's cloud points that lie in a segment appended to `out` (the others counted in
+/// `dropped`), then duplicates removed (a cloud point may repeat a lattice point or another one).
+template <std::size_t D>
+void add_cloud(std::vector<point<D>>& out, const std::vector<point<D>>& cloud, const coarse_model<D>& m,
+               std::size_t& dropped, unsigned threads) {
+  for (const auto& q : cloud) {
+    if (m.in_segment(q))
+      out.push_back(q);
+    else
+      ++dropped;
+  }
+  gsse::stable_sort(execution::par(threads), out.begin(), out.end(), [](const auto& x, const auto& y) { return lex_less(x, y); });
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+/// Points of the size field `h` (graded placement, modules/sizing) plus the cloud.
+template <std::size_t D>
+std::vector<point<D>> field_points(const coarse_model<D>& m, const sizing::size_field<D>& h,
+                                   const std::vector<point<D>>& cloud, std::size_t& dropped, unsigned threads) {
+  const auto& b = m.b;
+  std::vector<sizing::aabb<D>> fb(b.faces.size());
+  for (std::size_t f = 0; f < b.faces.size(); ++f) {
+    fb[f] = sizing::aabb<D>::empty();
+    for (vertex_id v : b.faces[f]) fb[f].add(b.points[v]);
+  }
+  const sizing::box_tree<D> faces(std::move(fb), std::vector<double>(b.faces.size(), 0.0));
+  sizing::placement<D> where;
+  where.segment_of = [&](const point<D>& q) {
+    const int r = m.region_of(q);
+    return r < 0 ? sizing::no_segment : m.l.regions[static_cast<std::size_t>(r)].number;
   };
+  where.clear = [&](const point<D>& q, double keep) {
+    return faces.visit([&](const sizing::aabb<D>& bx) { return bx.distance2(q) < keep * keep; }, [&](std::uint32_t f) {
+      std::array<point<D>, D> F;
+      for (std::size_t i = 0; i < D; ++i) F[i] = b.points[b.faces[f][i]];
+      return sizing::face_distance2<D>(F, q) >= keep * keep;
+    });
+  };
+  auto out = sizing::place_points<D>(h, sizing::aabb<D>{m.lo, m.hi}, where, threads);
+  add_cloud(out, cloud, m, dropped, threads);
+  return out;
+}
+
+/// Lattice points about h apart (see size_points) plus the cloud.
+template <std::size_t D>
+std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const std::vector<point<D>>& cloud,
+                                     std::size_t& dropped, unsigned threads, bool lattice) {
+  const auto& b = m.b;
+  const point<D> lo = m.lo, hi = m.hi;
+  auto in_segment = [&](const point<D>& q) { return m.in_segment(q); };
+  conformer::options co;
+  co.threads = threads;
   std::vector<point<D>> out;
   if (h > 0 && lattice) {
     // keep-off distance from the boundary faces (not only their vertices: a lattice point close to
@@ -264,25 +339,10 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
     auto face_distance2 = [&](std::uint32_t f, const point<D>& q) {
       const auto& F = b.faces[f];
       if constexpr (D == 2) {
-        const point2 a = b.points[F[0]], e = b.points[F[1]] - a;
-        const double t = std::clamp(dot(q - a, e) / dot(e, e), 0.0, 1.0);
-        return squared_distance(a + t * e, q);
+        return sizing::segment_distance2(b.points[F[0]], b.points[F[1]], q);
       } else {
         // closest point of the triangle: the plane's foot if inside, else the nearest edge point
-        const point3 a = b.points[F[0]], u = b.points[F[1]] - a, v = b.points[F[2]] - a, n = cross(u, v);
-        const double nn = dot(n, n);
-        const point3 foot = q - (dot(q - a, n) / nn) * n;
-        const double l1 = dot(cross(b.points[F[1]] - foot, b.points[F[2]] - foot), n);
-        const double l2 = dot(cross(b.points[F[2]] - foot, a - foot), n);
-        const double l3 = dot(cross(a - foot, b.points[F[1]] - foot), n);
-        if (l1 >= 0 && l2 >= 0 && l3 >= 0) return squared_distance(foot, q);
-        double best = 1e300;
-        for (int i = 0; i < 3; ++i) {
-          const point3 s = b.points[F[static_cast<std::size_t>(i)]], e = b.points[F[static_cast<std::size_t>((i + 1) % 3)]] - s;
-          const double t = std::clamp(dot(q - s, e) / dot(e, e), 0.0, 1.0);
-          best = std::min(best, squared_distance(s + t * e, q));
-        }
-        return best;
+        return sizing::triangle_distance2(b.points[F[0]], b.points[F[1]], b.points[F[2]], q);
       }
     };
     auto clear_of_boundary = [&](const point<D>& q) {
@@ -322,16 +382,30 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, cons
     });
     for (const auto& k : kept) out.insert(out.end(), k.begin(), k.end());
   }
-  for (const auto& q : cloud) {
-    if (in_segment(q))
-      out.push_back(q);
-    else
-      ++dropped;
-  }
-  // no duplicates: a cloud point may repeat a lattice point or another cloud point
-  gsse::stable_sort(execution::par(co.threads), out.begin(), out.end(), [](const auto& x, const auto& y) { return lex_less(x, y); });
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  add_cloud(out, cloud, m, dropped, threads);
   return out;
+}
+
+}  // namespace
+
+template <std::size_t D>
+std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, const std::vector<point<D>>& cloud,
+                                                 std::size_t& dropped, const conformer::options& co,
+                                                 bool lattice) const {
+  dropped = 0;
+  if ((h <= 0 || !lattice) && cloud.empty()) return {};
+  const coarse_model<D> m(p, co);
+  return lattice_points(m, h, cloud, dropped, co.threads, lattice);
+}
+
+template <std::size_t D>
+std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, const sizing::size_field<D>& h,
+                                                 const std::vector<point<D>>& cloud, std::size_t& dropped,
+                                                 const conformer::options& co) const {
+  dropped = 0;
+  const coarse_model<D> m(p, co);
+  if (h.uniform()) return lattice_points(m, h.global(), cloud, dropped, co.threads, std::isfinite(h.global()));
+  return field_points(m, h, cloud, dropped, co.threads);
 }
 
 template <std::size_t D>
@@ -421,7 +495,42 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   co.size = o.size;
   co.threads = o.threads;
   const bool creating = o.interior == fill::rules && o.size > 0;
-  const auto volume = size_points<D>{}(p, o.size, cloud, r.dropped_points, co, !creating);
+  std::vector<point<D>> volume;
+  sizing::size_field<D> field;
+  // a region's maximum volume (TetGen's region attribute) is a size constraint of its own
+  const bool volumes = std::any_of(p.regions.begin(), p.regions.end(), [](const auto& x) { return x.max_volume > 0; });
+  if ((o.graded || volumes) && !creating) {
+    // the size field from the unsized conformed boundary, then the points it asks for
+    const coarse_model<D> m(p, co);
+    sizing::spec<D> sp;
+    if constexpr (D == 2)
+      sp = o.sizing2;
+    else
+      sp = o.sizing3;
+    sp.global = o.size;
+    sizing::add_region_volumes(sp, p);
+    std::vector<std::array<int, 2>> sides(m.b.faces.size(), {0, 0});
+    for (std::size_t f = 0; f < sides.size() && f < m.l.side.size(); ++f)
+      for (std::size_t k = 0; k < 2; ++k)
+        if (const int ri = m.l.side[f][k]; ri >= 0) sides[f][k] = m.l.regions[static_cast<std::size_t>(ri)].number;
+    sizing::boundary_view<D> view{m.b.points, m.b.plc_points, m.b.faces, m.b.face_source, sides, p.source};
+    field = sizing::build(view, sp, o.threads);
+    r.uniform_size = field.uniform();
+    r.min_size = field.minimum();
+    r.size_sources = field.sources();
+    if (field.uniform()) {
+      volume = lattice_points(m, o.size, cloud, r.dropped_points, o.threads, o.size > 0);
+    } else {
+      volume = field_points(m, field, cloud, r.dropped_points, o.threads);
+      if constexpr (D == 2)
+        co.local_size2 = [&field](const point2& x) { return field(x); };
+      else
+        co.local_size3 = [&field](const point3& x) { return field(x); };
+    }
+  } else {
+    volume = size_points<D>{}(p, o.size, cloud, r.dropped_points, co, !creating);
+    r.min_size = o.size;
+  }
   r.volume_points = volume.size();
   lap("sizing");
   const auto b = conform<D>{}(p, volume, co);
@@ -471,7 +580,7 @@ quality measure(const domain<D>& d) {
   const double rad = 180 / std::numbers::pi;
   for (const auto& s : d.segments())
     for (const auto& c : s.cell_data()) {
-      double shortest = 1e300;
+      double shortest = 1e300, lo = 180, hi = 0;
       for (std::size_t i = 0; i <= D; ++i)
         for (std::size_t j = i + 1; j <= D; ++j) shortest = std::min(shortest, distance(p[c[i]], p[c[j]]));
       double r;
@@ -483,7 +592,7 @@ quality measure(const domain<D>& d) {
         for (std::size_t i = 0; i < 3; ++i) {
           const point2 x = p[c[(i + 1) % 3]] - p[c[i]], y = p[c[(i + 2) % 3]] - p[c[i]];
           const double ang = std::acos(std::clamp(dot(x, y) / std::sqrt(dot(x, x) * dot(y, y)), -1.0, 1.0)) * rad;
-          q.min_angle = std::min(q.min_angle, ang), q.max_angle = std::max(q.max_angle, ang);
+          lo = std::min(lo, ang), hi = std::max(hi, ang);
         }
       } else {
         const point3 u = p[c[1]] - p[c[0]], v = p[c[2]] - p[c[0]], w = p[c[3]] - p[c[0]];
@@ -499,10 +608,17 @@ quality measure(const domain<D>& d) {
             const point3 e = p[c[j]] - p[c[i]];
             const point3 n1 = cross(e, p[c[k]] - p[c[i]]), n2 = cross(e, p[c[l]] - p[c[i]]);
             const double ang = std::acos(std::clamp(dot(n1, n2) / std::sqrt(dot(n1, n1) * dot(n2, n2)), -1.0, 1.0)) * rad;
-            q.min_angle = std::min(q.min_angle, ang), q.max_angle = std::max(q.max_angle, ang);
+            lo = std::min(lo, ang), hi = std::max(hi, ang);
           }
       }
-      ratios.push_back(r / shortest);
+      q.min_angle = std::min(q.min_angle, lo), q.max_angle = std::max(q.max_angle, hi);
+      q.below5 += lo < 5, q.below10 += lo < 10, q.above170 += hi > 170;
+      ++q.angle_histogram[std::min<std::size_t>(6, static_cast<std::size_t>(std::max(0.0, lo) / 10))];
+      const double ratio = r / shortest;
+      std::size_t bin = 0;
+      while (bin < quality::ratio_bounds.size() && !(ratio < quality::ratio_bounds[bin])) ++bin;
+      ++q.ratio_histogram[bin];
+      ratios.push_back(ratio);
     }
   q.elements = ratios.size();
   if (!ratios.empty()) {

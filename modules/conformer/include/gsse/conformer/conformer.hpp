@@ -23,6 +23,11 @@ class conform_error : public std::runtime_error {
 
 struct options {
   double size = 0;                   // > 0: also split boundary elements longer than this
+  // a size that varies (the size field of modules/sizing): h(x) at a point of the boundary. Set,
+  // it replaces `size`: PLC edges are split so that their pieces follow it, subfacets are split
+  // while their circumradius exceeds h(circumcentre)/sqrt 3, and no facet lattice is seeded
+  std::function<double(const point2&)> local_size2;
+  std::function<double(const point3&)> local_size3;
   std::size_t max_steiner = 2'000'000;  // cap on inserted boundary points: a runaway becomes an error
   const rules::rule_set* rules = nullptr;  // nullptr: the embedded default conformer rules
   unsigned threads = 1;                    // subfacet encroachment checks run in parallel

@@ -14,6 +14,7 @@
 #include "gsse/container/domain.hpp"
 #include "gsse/container/plc.hpp"
 #include "gsse/front/point_creation.hpp"
+#include "gsse/sizing/size_field.hpp"
 #include "gsse/verify/verify.hpp"
 
 namespace gsse::pipeline {
@@ -24,6 +25,14 @@ enum class fill { lattice, rules };
 
 struct options {
   double size = 0;       // target element size H; 0: no sizing (boundary conforming only)
+  // graded sizing (modules/sizing): the size field is the minimum of `size`, the local feature
+  // size (sizing2/3.feature_size), the PLC regions' maximum volumes and the constraints in
+  // sizing2 (2D) or sizing3 (3D), graded by their `grade`. On when `graded` is set or a region
+  // has a maximum volume (else `size` alone is the uniform lattice); where nothing binds below
+  // `size`, the uniform lattice paths run as without it
+  bool graded = false;
+  sizing::spec<2> sizing2;
+  sizing::spec<3> sizing3;
   fill interior = fill::lattice;
   const rules::front_rule_set* front_rules = nullptr;  // fill::rules; nullptr: the embedded default
   double too_far = front::creation_options{}.too_far;  // fill::rules: create points for faces whose apex ball exceeds too_far*H
@@ -42,6 +51,9 @@ struct stage_time {
 struct report {
   std::vector<stage_time> times;
   std::size_t volume_points = 0, dropped_points = 0, steiner = 0;
+  bool uniform_size = true;     // the size field was one number (or there was none)
+  double min_size = 0;          // the size field's smallest value (0: no sizing)
+  std::size_t size_sources = 0;  // boundary pieces carrying the field's local terms
   front::creation_stats creation{};  // fill::rules
   std::vector<std::string> problems;  // from the verifier, when options::verify
 };
@@ -53,6 +65,10 @@ template <std::size_t D>
 struct size_points {
   std::vector<point<D>> operator()(const plc<D>& p, double h, const std::vector<point<D>>& cloud, std::size_t& dropped,
                                    const conformer::options& co, bool lattice = true) const;
+  /// For a size field: the lattice of its global size if it is uniform, else the graded
+  /// placement of sizing::place_points (spacing following h, kept h/2-ish off the boundary).
+  std::vector<point<D>> operator()(const plc<D>& p, const sizing::size_field<D>& h, const std::vector<point<D>>& cloud,
+                                   std::size_t& dropped, const conformer::options& co) const;
 };
 
 /// Stage: conform the boundary with respect to the volume points.
@@ -82,6 +98,14 @@ struct quality {
   double min_ratio = 0, median_ratio = 0, max_ratio = 0;
   double min_angle = 0, max_angle = 0;
   std::size_t elements = 0;
+  // elements with an angle (dihedral in 3D, plane in 2D) below 5 or 10 degrees, or above 170
+  std::size_t below5 = 0, below10 = 0, above170 = 0;
+  // radius-edge ratios: elements below each bound in ratio_bounds, and above the last
+  static constexpr std::array<double, 7> ratio_bounds{0.7, 0.8, 1.0, 1.2, 1.414, 2.0, 4.0};
+  std::array<std::size_t, 8> ratio_histogram{};
+  // smallest angle of each element, in 10-degree bins from 0 (the last: 60 and above; the regular
+  // tetrahedron's dihedral angle is 70.5, the equilateral triangle's 60)
+  std::array<std::size_t, 7> angle_histogram{};
 };
 template <std::size_t D>
 quality measure(const domain<D>& d);

@@ -1,0 +1,127 @@
+#pragma once
+// The size field h(x): the target edge length at x, which the conformer (boundary elements), the
+// interior point placement and the quality refinement all obey. It is the minimum of
+//
+//   - the local feature size across: each face of the (unsized) conformed boundary carries
+//     feature_factor * (distance to the nearest face of a facet region it does not touch whose
+//     nearest point lies at least 30 degrees out of its plane: the other side of a layer, the
+//     other wall of a gap; not the next-but-one facet of a tessellated curved surface), minus its
+//     own radius, subdivided until no larger than that value, so a thin layer or a narrow gap gets
+//     over two elements across without any user input;
+//   - per segment: a maximum size (the .poly region's maximum volume, TetGen's convention, as the
+//     edge of the regular tetrahedron (3D) or equilateral triangle (2D) of that volume or area,
+//     or the sidecar's "sizes"), carried by the segment's boundary faces and applied inside it;
+//   - interface layers: a size on the faces between two named segments;
+//   - refinement boxes: a size inside an axis-aligned box;
+//   - the global size (--size);
+//
+// each graded: a constraint of size s at a place grows by (grade - 1) per unit of distance away
+// from it, so h is Lipschitz with constant grade - 1 and neighbouring elements' sizes differ by
+// at most about the factor `grade`. A background mesh (nodes, cells and a size per node,
+// interpolated linearly in its cells) is applied as given, not graded.
+//
+// Sizing only: the values are doubles that place points; they decide no topology.
+#include <array>
+#include <cstddef>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <span>
+
+#include "gsse/container/plc.hpp"
+#include "gsse/sizing/box_tree.hpp"
+
+namespace gsse::sizing {
+
+inline constexpr double unbounded = std::numeric_limits<double>::infinity();
+
+/// What the user asked for. Segments are named by their numbers (the .poly region attribute).
+template <std::size_t D>
+struct spec {
+  double global = 0;                    // --size; 0: none
+  double grade = 1.3;                   // --grade: neighbouring sizes differ by at most this factor (> 1)
+  bool feature_size = true;             // the local feature size term
+  double feature_factor = 0.45;         // h = factor * local feature size (0.45: over 2 elements across)
+  std::map<int, double> segment_size;   // segment number -> maximum size (sidecar "sizes", .poly volumes)
+  struct box {
+    point<D> lo, hi;
+    double size;
+  };
+  std::vector<box> boxes;               // sidecar "refine"
+  struct interface_layer {
+    int a, b;  // segment numbers
+    double size;
+  };
+  std::vector<interface_layer> interfaces;  // sidecar "interfaces"
+  struct background_mesh {
+    std::vector<point<D>> points;
+    std::vector<std::array<vertex_id, D + 1>> cells;
+    std::vector<double> size;  // per point
+    std::string source;
+  };
+  std::shared_ptr<const background_mesh> background;  // sidecar "background" (.node/.ele + .mtr)
+};
+
+/// The maximum size of a .poly region's maximum volume (3D) or area (2D): the edge of the regular
+/// simplex of that measure.
+double size_of_measure(double measure, std::size_t dimension);
+
+/// Sets spec.segment_size from the PLC's region maximum volumes (where larger than what is set).
+template <std::size_t D>
+void add_region_volumes(spec<D>& s, const plc<D>& p);
+
+template <std::size_t D>
+class size_field {
+ public:
+  size_field() = default;  // no sizing: unbounded everywhere
+  /// h at x, without the per-segment interior constraint (boundary elements: the segments on both
+  /// sides carry theirs through their boundary faces).
+  double operator()(const point<D>& x) const;
+  /// h at x inside segment `number` (also its own maximum size).
+  double operator()(const point<D>& x, int number) const;
+  /// True if h is the global size everywhere (no other term binds anywhere): the lattice paths.
+  bool uniform() const { return uniform_; }
+  double global() const { return global_; }
+  /// The smallest value of the field (over its sources and the global size).
+  double minimum() const { return minimum_; }
+  double slope() const { return slope_; }
+  /// Sources of the graded minimum (boundary face pieces), for statistics and tests.
+  std::size_t sources() const { return faces_.size(); }
+
+ private:
+  template <std::size_t E>
+  friend struct field_builder;
+  double global_ = unbounded, slope_ = 0.3, minimum_ = unbounded;
+  bool uniform_ = true;
+  box_tree<D> faces_;                       // boundary face pieces with their values
+  std::vector<typename spec<D>::box> boxes_;
+  std::map<int, double> segment_size_;
+  std::shared_ptr<const typename spec<D>::background_mesh> background_;
+  box_tree<D> background_cells_;
+  double background_value(const point<D>& x) const;
+};
+
+/// What the field needs of a conformed boundary (the conformer's, unsized: PLC facets conformed,
+/// no size splits): its points (the PLC's first), its faces (segments in 2D, triangles in 3D),
+/// the PLC facet (2D: edge) or merged facet region each face comes from, and the segment numbers
+/// on its two sides (0: outside every segment).
+template <std::size_t D>
+struct boundary_view {
+  std::span<const point<D>> points;
+  std::size_t plc_points = 0;
+  std::span<const std::array<vertex_id, D>> faces;
+  std::span<const std::uint32_t> face_source;
+  std::span<const std::array<int, 2>> sides;
+  std::string source;  // the input file, for messages
+};
+
+/// Builds the field from the boundary. Parallel over faces; the same field for any thread count.
+/// Throws std::runtime_error when the features are so small that the field would need more than
+/// 2e7 pieces.
+template <std::size_t D>
+size_field<D> build(const boundary_view<D>& b, const spec<D>& s, unsigned threads = 1);
+
+}  // namespace gsse::sizing

@@ -1,0 +1,86 @@
+#include "gsse/sizing/inputs.hpp"
+
+#include <charconv>
+
+#include <filesystem>
+
+#include "gsse/io/node_ele.hpp"
+#include "gsse/io/text_reader.hpp"
+
+namespace gsse::sizing {
+
+template <std::size_t D>
+std::shared_ptr<const typename spec<D>::background_mesh> read_background(const std::string& path) {
+  std::string base = path;
+  for (const char* e : {".node", ".ele", ".mtr"}) {
+    const std::string ext = e;
+    if (base.size() > ext.size() && base.compare(base.size() - ext.size(), ext.size(), ext) == 0) {
+      base.resize(base.size() - ext.size());
+      break;
+    }
+  }
+  const domain<D> d = io::read_node_ele<D>(base);
+  auto B = std::make_shared<typename spec<D>::background_mesh>();
+  B->source = base + ".mtr";
+  B->points = d.points();
+  for (const auto& s : d.segments())
+    for (const auto& c : s.cell_data()) B->cells.push_back(c);
+  io::text_reader r(base + ".mtr");
+  r.require_line("size count line '<#points> <#values per point>'");
+  const long n = r.integer_in("number of points", 0, 1'000'000'000);
+  if (static_cast<std::size_t>(n) != B->points.size())
+    r.fail(std::to_string(n) + " sizes for " + std::to_string(B->points.size()) + " nodes in " + base + ".node");
+  const long per = r.optional_integer("values per point", 1);
+  if (per != 1) r.fail("one size per point is supported (an isotropic size), not " + std::to_string(per));
+  B->size.reserve(static_cast<std::size_t>(n));
+  for (long i = 0; i < n; ++i) {
+    r.require_line("size of node " + std::to_string(i + 1));
+    const double h = r.real("size");
+    if (!(h > 0)) r.fail("the size of node " + std::to_string(i + 1) + " must be positive");
+    B->size.push_back(h);
+  }
+  return B;
+}
+
+template <std::size_t D>
+void add_sidecar(spec<D>& s, const io::sizing_table& t, const plc<D>& p, const std::string& sidecar_path) {
+  auto number = [&](const std::string& name, std::size_t line) {
+    for (const auto& r : p.regions)
+      if (r.name == name) return r.number;
+    int n = 0;
+    auto [end, ec] = std::from_chars(name.data(), name.data() + name.size(), n);
+    if (ec == std::errc() && end == name.data() + name.size())
+      for (const auto& r : p.regions)
+        if (r.number == n) return n;
+    std::string known;
+    for (const auto& r : p.regions) known += (known.empty() ? "" : ", ") + (r.name.empty() ? std::to_string(r.number) : r.name);
+    throw io::io_error(sidecar_path, line, "no segment '" + name + "' in " + p.source + (known.empty() ? "" : " (segments: " + known + ")"));
+  };
+  for (const auto& e : t.sizes) {
+    const int n = number(e.segment, e.line);
+    auto [it, fresh] = s.segment_size.try_emplace(n, e.size);
+    if (!fresh) it->second = std::min(it->second, e.size);
+  }
+  for (const auto& L : t.interfaces) s.interfaces.push_back({number(L.a, L.line), number(L.b, L.line), L.size});
+  for (const auto& b : t.boxes) {
+    if (b.lo.size() != D)
+      throw io::io_error(sidecar_path, b.line, "a refinement box of " + std::to_string(b.lo.size()) + " coordinates for a " +
+                                                   std::to_string(D) + "D input");
+    typename spec<D>::box x;
+    for (std::size_t k = 0; k < D; ++k) x.lo[k] = b.lo[k], x.hi[k] = b.hi[k];
+    x.size = b.size;
+    s.boxes.push_back(x);
+  }
+  if (!t.background.empty()) {
+    const std::filesystem::path rel(t.background);
+    s.background = read_background<D>(rel.is_absolute() ? rel.string() : (std::filesystem::path(sidecar_path).parent_path() / rel).string());
+  }
+  if (t.grade > 0) s.grade = t.grade;
+}
+
+template void add_sidecar<2>(spec<2>&, const io::sizing_table&, const plc<2>&, const std::string&);
+template void add_sidecar<3>(spec<3>&, const io::sizing_table&, const plc<3>&, const std::string&);
+template std::shared_ptr<const spec<2>::background_mesh> read_background<2>(const std::string&);
+template std::shared_ptr<const spec<3>::background_mesh> read_background<3>(const std::string&);
+
+}  // namespace gsse::sizing

@@ -1,0 +1,186 @@
+#include "gsse/sizing/place_points.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <numeric>
+
+#include "gsse/geometry/hash_grid.hpp"
+#include "gsse/traversal/for_each.hpp"
+
+namespace gsse::sizing {
+namespace {
+
+template <std::size_t D>
+struct candidate {
+  point<D> q;
+  int level;
+  std::uint64_t order;  // generation order within the whole run (root cube, then depth-first)
+};
+
+constexpr int max_level = 40;
+
+}  // namespace
+
+template <std::size_t D>
+std::vector<point<D>> place_points(const size_field<D>& h, const aabb<D>& box, const placement<D>& where,
+                                   unsigned threads) {
+  const double extent = std::sqrt(squared_distance(box.lo, box.hi));
+  const double d0 = std::isfinite(h.global()) ? std::min(h.global(), extent) : 0.5 * extent;
+  return place_points<D>([&h](const point<D>& x, int seg) { return seg == no_segment ? h(x) : h(x, seg); }, d0, box,
+                         where, threads);
+}
+
+template <std::size_t D>
+std::vector<point<D>> place_points(const std::function<double(const point<D>&, int)>& h, double d0, const aabb<D>& box,
+                                   const placement<D>& where, unsigned threads, double stretch) {
+  const double extent = std::sqrt(squared_distance(box.lo, box.hi));
+  if (!(extent > 0) || !(d0 > 0)) return {};
+  // cube side of the level-0 lattice: BCC nearest neighbours at sqrt(3)/2 a; 2D: squares of side
+  // d holding the triangular lattice's points (rows sqrt(3)/2 d apart)
+  const double a0 = D == 3 ? 2 * d0 / std::sqrt(3.0) : d0;
+  const double row0 = std::sqrt(3.0) / 2 * d0;
+  // the origin shifted by odd fractions, as the uniform lattice: points rarely on axis-aligned planes
+  point<D> origin;
+  const double shift[3] = {0.0137, 0.0271, 0.0419};
+  for (std::size_t k = 0; k < D; ++k) origin[k] = box.lo[k] - a0 * (1 - shift[k]);
+  std::array<long, D> n;
+  std::size_t roots = 1;
+  for (std::size_t k = 0; k < D; ++k) {
+    n[k] = static_cast<long>(std::ceil((box.hi[k] - origin[k]) / a0)) + 1;
+    roots *= static_cast<std::size_t>(n[k]);
+  }
+  // a lattice coordinate: origin + (i * a0) / 2^level, exact in the level (scaling by two is exact)
+  auto coord = [&](const std::array<std::int64_t, D>& i, int level) {
+    point<D> q;
+    for (std::size_t k = 0; k < D; ++k) q[k] = origin[k] + std::ldexp(static_cast<double>(i[k]) * a0, -level);
+    return q;
+  };
+  // per root cube: the candidates of its subtree, depth first
+  std::vector<std::vector<candidate<D>>> per_root(roots);
+  std::vector<std::size_t> ids(roots);
+  std::iota(ids.begin(), ids.end(), std::size_t{0});
+  for_each(execution::par(threads), ids, [&](std::size_t r) {
+    std::array<std::int64_t, D> i0;
+    std::size_t rest = r;
+    for (std::size_t k = 0; k < D; ++k) i0[k] = static_cast<std::int64_t>(rest % static_cast<std::size_t>(n[k])), rest /= static_cast<std::size_t>(n[k]);
+    auto& out = per_root[r];
+    std::uint64_t order = 0;
+    // cube at `level` with min corner index i (in units of a0 / 2^level)
+    auto visit = [&](auto&& self, const std::array<std::int64_t, D>& i, int level) -> void {
+      const double a = std::ldexp(a0, -level), d = std::ldexp(d0, -level);
+      point<D> lo = coord(i, level), c;
+      for (std::size_t k = 0; k < D; ++k) c[k] = lo[k] + 0.5 * a;
+      // skip cubes (with their neighbourhood of one spacing) outside the model's box
+      for (std::size_t k = 0; k < D; ++k)
+        if (lo[k] > box.hi[k] + a || lo[k] + a < box.lo[k] - a) return;
+      const int seg = where.segment_of(c);
+      const double hc = h(c, seg);
+      // the coarsest level whose spacing is at most stretch * h (1: spacings in (h/2, h])
+      if (d > stretch * hc && level < max_level) {
+        for (unsigned m = 0; m < (1u << D); ++m) {
+          std::array<std::int64_t, D> j;
+          for (std::size_t k = 0; k < D; ++k) j[k] = 2 * i[k] + ((m >> k) & 1u);
+          self(self, j, level + 1);
+        }
+        return;
+      }
+      if constexpr (D == 3) {
+        out.push_back({c, level, order++});
+        for (unsigned m = 0; m < (1u << D); ++m) {
+          std::array<std::int64_t, D> j;
+          for (std::size_t k = 0; k < D; ++k) j[k] = i[k] + ((m >> k) & 1u);
+          out.push_back({coord(j, level), level, order++});
+        }
+      } else {
+        // the triangular lattice's points in the half-open square: row j at origin + j row0 / 2^level,
+        // column m (same parity as j) at origin + m (d0 / 2) / 2^level; exact, and nested by level
+        const double hi0 = lo[0] + a, hi1 = lo[1] + a;
+        const double row = std::ldexp(row0, -level), half = std::ldexp(0.5 * d0, -level);
+        for (auto j = static_cast<std::int64_t>(std::floor((lo[1] - origin[1]) / row)) - 1;; ++j) {
+          const double y = origin[1] + std::ldexp(static_cast<double>(j) * row0, -level);
+          if (y >= hi1) break;
+          if (y < lo[1]) continue;
+          auto m = static_cast<std::int64_t>(std::floor((lo[0] - origin[0]) / half)) - 2;
+          if (((m - j) % 2 + 2) % 2 != 0) ++m;
+          for (;; m += 2) {
+            const double x = origin[0] + std::ldexp(static_cast<double>(m) * 0.5 * d0, -level);
+            if (x >= hi0) break;
+            if (x >= lo[0]) out.push_back({point<D>{x, y}, level, order++});
+          }
+        }
+      }
+    };
+    visit(visit, i0, 0);
+  }, [&](std::size_t) { return 1.0; });
+  std::vector<candidate<D>> all;
+  {
+    std::size_t total = 0, base = 0;
+    for (const auto& v : per_root) total += v.size();
+    all.reserve(total);
+    for (auto& v : per_root) {
+      for (auto& x : v) all.push_back({x.q, x.level, base + x.order});
+      base += v.size();
+      std::vector<candidate<D>>().swap(v);
+    }
+  }
+  // exact duplicates (shared corners) kept once, at their first place in (level, order)
+  auto first = [](const candidate<D>& x, const candidate<D>& y) { return x.level < y.level || (x.level == y.level && x.order < y.order); };
+  std::sort(all.begin(), all.end(), [&](const candidate<D>& x, const candidate<D>& y) {
+    if (x.q != y.q) return x.q < y.q;
+    return first(x, y);
+  });
+  all.erase(std::unique(all.begin(), all.end(), [](const candidate<D>& x, const candidate<D>& y) { return x.q == y.q; }), all.end());
+  std::sort(all.begin(), all.end(), first);
+  // classification in parallel: inside a segment and clear of the boundary by half the spacing
+  std::vector<char> ok(all.size(), 0);
+  std::vector<std::size_t> idx(all.size());
+  std::iota(idx.begin(), idx.end(), std::size_t{0});
+  constexpr std::size_t chunk = 1024;
+  std::vector<std::size_t> chunks((all.size() + chunk - 1) / chunk);
+  std::iota(chunks.begin(), chunks.end(), std::size_t{0});
+  for_each(execution::par(threads), chunks, [&](std::size_t c) {
+    for (std::size_t k = c * chunk; k < std::min(all.size(), (c + 1) * chunk); ++k) {
+      const auto& x = all[k];
+      const double d = std::ldexp(d0, -x.level);
+      ok[k] = where.segment_of(x.q) != no_segment && where.clear(x.q, 0.5 * d);
+    }
+  }, [&](std::size_t) { return 1.0; });
+  // greedy, sequential: one hash grid per level with its spacing as cell
+  std::vector<std::unique_ptr<hash_grid<D>>> grids(max_level + 1);
+  std::vector<point<D>> out;
+  std::vector<int> level_of;
+  int deepest = 0;
+  for (const auto& x : all) deepest = std::max(deepest, x.level);
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if (!ok[k]) continue;
+    const auto& x = all[k];
+    bool free = true;
+    for (int j = 0; j <= deepest && free; ++j) {
+      if (!grids[static_cast<std::size_t>(j)]) continue;
+      const double r = 0.8 * std::ldexp(d0, -std::max(j, x.level));
+      point<D> lo, hi;
+      for (std::size_t a = 0; a < D; ++a) lo[a] = x.q[a] - r, hi[a] = x.q[a] + r;
+      grids[static_cast<std::size_t>(j)]->visit(lo, hi, [&](std::uint32_t p) {
+        if (squared_distance(out[p], x.q) < r * r) free = false;
+        return free;
+      });
+    }
+    if (!free) continue;
+    auto& g = grids[static_cast<std::size_t>(x.level)];
+    if (!g) g = std::make_unique<hash_grid<D>>(origin, std::ldexp(d0, -x.level));
+    g->insert(static_cast<std::uint32_t>(out.size()), x.q);
+    out.push_back(x.q);
+  }
+  return out;
+}
+
+template std::vector<point2> place_points<2>(const size_field<2>&, const aabb<2>&, const placement<2>&, unsigned);
+template std::vector<point2> place_points<2>(const std::function<double(const point2&, int)>&, double, const aabb<2>&,
+                                             const placement<2>&, unsigned, double);
+template std::vector<point3> place_points<3>(const std::function<double(const point3&, int)>&, double, const aabb<3>&,
+                                             const placement<3>&, unsigned, double);
+template std::vector<point3> place_points<3>(const size_field<3>&, const aabb<3>&, const placement<3>&, unsigned);
+
+}  // namespace gsse::sizing

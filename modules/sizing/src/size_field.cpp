@@ -1,0 +1,308 @@
+#include "gsse/sizing/size_field.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "gsse/sizing/distance.hpp"
+#include "gsse/traversal/for_each.hpp"
+
+namespace gsse::sizing {
+
+double size_of_measure(double measure, std::size_t dimension) {
+  // regular tetrahedron: V = a^3 / (6 sqrt 2); equilateral triangle: A = sqrt(3) a^2 / 4
+  if (dimension == 3) return std::cbrt(6 * std::numbers::sqrt2 * measure);
+  return std::sqrt(4 * measure / std::numbers::sqrt3);
+}
+
+template <std::size_t D>
+void add_region_volumes(spec<D>& s, const plc<D>& p) {
+  for (const auto& r : p.regions)
+    if (r.max_volume > 0) {
+      const double h = size_of_measure(r.max_volume, D);
+      auto [it, fresh] = s.segment_size.try_emplace(r.number, h);
+      if (!fresh) it->second = std::min(it->second, h);
+    }
+}
+
+template <std::size_t D>
+double size_field<D>::background_value(const point<D>& x) const {
+  if (!background_) return unbounded;
+  const auto& B = *background_;
+  double v = unbounded;
+  background_cells_.visit([&](const aabb<D>& b) { return b.contains(x); }, [&](std::uint32_t c) {
+    const auto& C = B.cells[c];
+    // barycentric coordinates by Cramer's rule
+    std::array<std::array<double, D>, D> m;
+    for (std::size_t i = 0; i < D; ++i)
+      for (std::size_t k = 0; k < D; ++k) m[k][i] = B.points[C[i + 1]][k] - B.points[C[0]][k];
+    const point<D> r = x - B.points[C[0]];
+    std::array<double, D + 1> lam{};
+    if constexpr (D == 2) {
+      const double det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+      if (det == 0) return true;
+      lam[1] = (r[0] * m[1][1] - m[0][1] * r[1]) / det;
+      lam[2] = (m[0][0] * r[1] - r[0] * m[1][0]) / det;
+    } else {
+      auto det3 = [](const std::array<std::array<double, 3>, 3>& a) {
+        return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+               a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+      };
+      const double det = det3(m);
+      if (det == 0) return true;
+      for (std::size_t i = 0; i < 3; ++i) {
+        auto mi = m;
+        for (std::size_t k = 0; k < 3; ++k) mi[k][i] = r[k];
+        lam[i + 1] = det3(mi) / det;
+      }
+    }
+    lam[0] = 1;
+    for (std::size_t i = 1; i <= D; ++i) lam[0] -= lam[i];
+    constexpr double eps = 1e-12;
+    for (double t : lam)
+      if (t < -eps) return true;
+    double s = 0;
+    for (std::size_t i = 0; i <= D; ++i) s += std::max(0.0, lam[i]) * B.size[C[i]];
+    v = s;
+    return false;
+  });
+  return v;
+}
+
+template <std::size_t D>
+double size_field<D>::operator()(const point<D>& x) const {
+  double v = global_;
+  for (const auto& b : boxes_) {
+    aabb<D> box{b.lo, b.hi};
+    v = std::min(v, b.size + slope_ * std::sqrt(box.distance2(x)));
+  }
+  v = faces_.graded_min(x, slope_, v);
+  if (background_) v = std::min(v, background_value(x));
+  return v;
+}
+
+template <std::size_t D>
+double size_field<D>::operator()(const point<D>& x, int number) const {
+  double v = (*this)(x);
+  if (auto it = segment_size_.find(number); it != segment_size_.end()) v = std::min(v, it->second);
+  return v;
+}
+
+namespace {
+
+template <std::size_t D>
+using simplex_pts = std::array<point<D>, D>;
+
+template <std::size_t D>
+point<D> centroid(const simplex_pts<D>& s) {
+  point<D> c{};
+  for (const auto& q : s) c = c + (1.0 / static_cast<double>(D)) * q;
+  return c;
+}
+
+template <std::size_t D>
+void split(const simplex_pts<D>& s, std::vector<simplex_pts<D>>& out) {
+  if constexpr (D == 2) {
+    const point2 m = 0.5 * (s[0] + s[1]);
+    out.push_back({s[0], m});
+    out.push_back({m, s[1]});
+  } else {
+    const point3 a = 0.5 * (s[1] + s[2]), b = 0.5 * (s[0] + s[2]), c = 0.5 * (s[0] + s[1]);
+    out.push_back({s[0], c, b});
+    out.push_back({c, s[1], a});
+    out.push_back({b, a, s[2]});
+    out.push_back({a, b, c});
+  }
+}
+
+}  // namespace
+
+template <std::size_t D>
+struct field_builder {
+  static size_field<D> run(const boundary_view<D>& b, const spec<D>& s, unsigned threads);
+};
+
+template <std::size_t D>
+size_field<D> build(const boundary_view<D>& b, const spec<D>& s, unsigned threads) {
+  return field_builder<D>::run(b, s, threads);
+}
+
+template <std::size_t D>
+size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s, unsigned threads) {
+  if (!(s.grade > 1)) throw std::invalid_argument("the grade must be above 1");
+  size_field<D> f;
+  f.slope_ = s.grade - 1;
+  f.global_ = s.global > 0 ? s.global : unbounded;
+  f.segment_size_ = s.segment_size;
+  for (const auto& [n, h] : s.segment_size)
+    if (!(h > 0) || !std::isfinite(h)) throw std::invalid_argument("segment " + std::to_string(n) + ": the size must be positive");
+  f.boxes_ = s.boxes;
+  f.background_ = s.background;
+  f.minimum_ = f.global_;
+
+  // the model's extent: a floor for the values (features closer than 1e-9 of it are not resolved)
+  aabb<D> all = aabb<D>::empty();
+  for (const auto& q : b.points) all.add(q);
+  const double extent = b.points.empty() ? 1.0 : std::sqrt(squared_distance(all.lo, all.hi));
+  const double floor = 1e-9 * extent;
+
+  // incidence of the faces' sources (the conformer's facet regions in 3D, named by their first
+  // PLC facet; PLC edges in 2D): sharing a PLC vertex. The vertex sets come from the faces, so a
+  // merged region of coplanar facets has the vertices of all its members
+  std::size_t nsrc = 0;
+  for (auto src : b.face_source) nsrc = std::max<std::size_t>(nsrc, src + 1);
+  std::vector<std::vector<vertex_id>> verts(nsrc);
+  for (std::size_t k = 0; k < b.faces.size() && k < b.face_source.size(); ++k)
+    for (vertex_id v : b.faces[k])
+      if (v < b.plc_points) verts[b.face_source[k]].push_back(v);
+  for (auto& vs : verts) {
+    std::sort(vs.begin(), vs.end());
+    vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+  }
+  std::vector<std::vector<std::uint32_t>> at_vertex(b.plc_points);
+  for (std::uint32_t k = 0; k < nsrc; ++k)
+    for (vertex_id v : verts[k])
+      if (v < at_vertex.size()) at_vertex[v].push_back(k);
+  std::vector<std::vector<std::uint32_t>> touching(nsrc);  // sorted sources sharing a vertex with k
+  for (std::uint32_t k = 0; k < nsrc; ++k) {
+    for (vertex_id v : verts[k])
+      if (v < at_vertex.size()) touching[k].insert(touching[k].end(), at_vertex[v].begin(), at_vertex[v].end());
+    touching[k].push_back(k);
+    std::sort(touching[k].begin(), touching[k].end());
+    touching[k].erase(std::unique(touching[k].begin(), touching[k].end()), touching[k].end());
+  }
+  auto incident = [&](std::uint32_t x, std::uint32_t y) {
+    return std::binary_search(touching[x].begin(), touching[x].end(), y);
+  };
+
+  // the faces, for the nearest non-incident face
+  const std::size_t nf = b.faces.size();
+  auto face_pts = [&](std::size_t k) {
+    simplex_pts<D> s2;
+    for (std::size_t i = 0; i < D; ++i) s2[i] = b.points[b.faces[k][i]];
+    return s2;
+  };
+  std::vector<aabb<D>> fboxes(nf);
+  for (std::size_t k = 0; k < nf; ++k) {
+    fboxes[k] = aabb<D>::empty();
+    for (const auto& q : face_pts(k)) fboxes[k].add(q);
+  }
+  const box_tree<D> ftree(fboxes, std::vector<double>(nf, 0.0));
+
+  // the constant part of each face's value: its sides' segment sizes and interface layers
+  auto side_value = [&](std::size_t k) {
+    double v = unbounded;
+    if (k >= b.sides.size()) return v;
+    const int n0 = b.sides[k][0], n1 = b.sides[k][1];
+    for (int n : {n0, n1})
+      if (auto it = s.segment_size.find(n); n != 0 && it != s.segment_size.end()) v = std::min(v, it->second);
+    for (const auto& L : s.interfaces)
+      if ((L.a == n0 && L.b == n1) || (L.a == n1 && L.b == n0)) v = std::min(v, L.size);
+    return v;
+  };
+
+  // per face: pieces subdivided until no larger (circumradius about the centroid) than their
+  // value; pieces whose value does not beat the global size are dropped
+  constexpr std::size_t max_sources = 20'000'000;
+  std::vector<std::vector<std::pair<simplex_pts<D>, double>>> pieces(nf);
+  std::vector<std::size_t> ids(nf);
+  for (std::size_t k = 0; k < nf; ++k) ids[k] = k;
+  std::atomic<std::size_t> total{0};
+  std::atomic<bool> overflow{false};
+  for_each(execution::par(threads), ids, [&](std::size_t k) {
+    const double fixed = side_value(k);
+    const std::uint32_t src = k < b.face_source.size() ? b.face_source[k] : 0;
+    std::vector<simplex_pts<D>> todo{face_pts(k)}, next;
+    auto& out = pieces[k];
+    while (!todo.empty() && !overflow.load(std::memory_order_relaxed)) {
+      next.clear();
+      for (const auto& piece : todo) {
+        const point<D> c = centroid<D>(piece);
+        point<D> normal;
+        if constexpr (D == 2)
+          normal = {piece[0][1] - piece[1][1], piece[1][0] - piece[0][0]};
+        else
+          normal = cross(piece[1] - piece[0], piece[2] - piece[0]);
+        const double nn = dot(normal, normal);
+        double r = 0;
+        for (const auto& q : piece) r = std::max(r, std::sqrt(squared_distance(q, c)));
+        double v = fixed;
+        if (s.feature_size) {
+          // nearest face of a source this one does not touch, searched no farther than where the
+          // term could still beat the other terms
+          const double cap = std::min(v, f.global_);
+          double best2 = std::isfinite(cap) ? std::pow(cap / s.feature_factor + r, 2) : unbounded;
+          double found2 = unbounded;
+          ftree.visit([&](const aabb<D>& bx) { return bx.distance2(c) < std::min(best2, found2); },
+                      [&](std::uint32_t g) {
+                        const std::uint32_t gs = g < b.face_source.size() ? b.face_source[g] : 0;
+                        if (gs < nsrc && src < nsrc && incident(src, gs)) return true;
+                        // only a face across: its nearest point at least 30 degrees out of
+                        // this face's plane (a layer's other side, a gap's other wall), not one
+                        // beside it (the next-but-one facet of a tessellated curved surface)
+                        const point<D> q = face_closest<D>(face_pts(g), c), w = q - c;
+                        const double d2 = dot(w, w), across = dot(w, normal);
+                        if (d2 < found2 && across * across >= 0.25 * d2 * nn) found2 = d2;
+                        return true;
+                      });
+          if (std::isfinite(found2)) v = std::min(v, s.feature_factor * std::max(0.0, std::sqrt(found2) - r));
+        }
+        if (!(v < f.global_)) continue;  // does not bind anywhere the global size does not
+        if (r > std::max(v, floor)) {
+          split<D>(piece, next);
+          continue;
+        }
+        out.push_back({piece, std::max(v, floor)});
+      }
+      if (total.fetch_add(out.size() + next.size(), std::memory_order_relaxed) > max_sources) overflow = true;
+      std::swap(todo, next);
+    }
+  }, [&](std::size_t) { return 1.0; });
+  if (overflow)
+    throw std::runtime_error(b.source + ": the local feature size needs more than " + std::to_string(max_sources) +
+                             " boundary pieces (features far below the model's size)");
+  std::vector<aabb<D>> boxes;
+  std::vector<double> values;
+  for (const auto& v : pieces)
+    for (const auto& [piece, value] : v) {
+      aabb<D> bx = aabb<D>::empty();
+      for (const auto& q : piece) bx.add(q);
+      boxes.push_back(bx);
+      values.push_back(value);
+      f.minimum_ = std::min(f.minimum_, value);
+    }
+  f.faces_ = box_tree<D>(std::move(boxes), std::move(values));
+  f.uniform_ = f.faces_.empty() && !f.background_;
+  for (const auto& bx : s.boxes) {
+    if (!(bx.size > 0)) throw std::invalid_argument("a refinement box's size must be positive");
+    f.minimum_ = std::min(f.minimum_, bx.size);
+    if (bx.size < f.global_) f.uniform_ = false;
+  }
+  for (const auto& [n, h] : s.segment_size)
+    if (h < f.global_) f.uniform_ = false, f.minimum_ = std::min(f.minimum_, h);
+  if (f.background_) {
+    const auto& B = *f.background_;
+    std::vector<aabb<D>> cb(B.cells.size());
+    for (std::size_t c = 0; c < B.cells.size(); ++c) {
+      cb[c] = aabb<D>::empty();
+      for (vertex_id v : B.cells[c]) cb[c].add(B.points[v]);
+    }
+    f.background_cells_ = box_tree<D>(std::move(cb), std::vector<double>(B.cells.size(), 0.0));
+    for (double h : B.size) f.minimum_ = std::min(f.minimum_, h);
+  }
+  return f;
+}
+
+template double size_field<2>::operator()(const point2&) const;
+template double size_field<3>::operator()(const point3&) const;
+template double size_field<2>::operator()(const point2&, int) const;
+template double size_field<3>::operator()(const point3&, int) const;
+template void add_region_volumes<2>(spec<2>&, const plc<2>&);
+template void add_region_volumes<3>(spec<3>&, const plc<3>&);
+template size_field<2> build<2>(const boundary_view<2>&, const spec<2>&, unsigned);
+template size_field<3> build<3>(const boundary_view<3>&, const spec<3>&, unsigned);
+
+}  // namespace gsse::sizing

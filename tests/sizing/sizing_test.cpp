@@ -1,0 +1,327 @@
+#define BOOST_TEST_MODULE sizing
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <set>
+
+#include "gsse/io/sidecar.hpp"
+#include "gsse/pipeline/pipeline.hpp"
+#include "gsse/sizing/inputs.hpp"
+#include "gsse/sizing/size_field.hpp"
+#include "gsse/verify/verify.hpp"
+
+using namespace gsse;
+namespace pl = gsse::pipeline;
+
+namespace {
+
+/// Boxes stacked in z over [0, w] x [0, w]: layer k spans z[k]..z[k+1] and is segment k+1. The
+/// interfaces are shared facets; each layer has its own four side facets.
+plc<3> stack(double w, const std::vector<double>& z, const std::vector<double>& max_volume = {}) {
+  plc<3> p;
+  p.source = "stack";
+  const std::size_t n = z.size();
+  for (double zk : z)
+    for (auto [x, y] : {std::pair{0.0, 0.0}, {w, 0.0}, {w, w}, {0.0, w}}) p.points.push_back({x, y, zk});
+  auto ring = [](std::size_t k) { return static_cast<vertex_id>(4 * k); };
+  for (std::size_t k = 0; k < n; ++k) {
+    plc_facet f;
+    f.polygons.push_back({ring(k), ring(k) + 1, ring(k) + 2, ring(k) + 3});
+    p.facets.push_back(f);
+  }
+  for (std::size_t k = 0; k + 1 < n; ++k)
+    for (vertex_id s = 0; s < 4; ++s) {
+      plc_facet f;
+      f.polygons.push_back({ring(k) + s, ring(k) + (s + 1) % 4, ring(k + 1) + (s + 1) % 4, ring(k + 1) + s});
+      p.facets.push_back(f);
+    }
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    plc_region<3> r;
+    r.at = {0.37 * w, 0.41 * w, 0.5 * (z[k] + z[k + 1])};
+    r.number = static_cast<int>(k + 1);
+    r.name = "layer" + std::to_string(k + 1);
+    if (k < max_volume.size()) r.max_volume = max_volume[k];
+    p.regions.push_back(r);
+  }
+  return p;
+}
+
+domain<3> mesh(const plc<3>& p, pl::options o, pl::report* rep = nullptr) {
+  o.verify = true;
+  o.threads = 2;
+  pl::report r;
+  auto d = pl::mesh(p, {}, o, r);
+  BOOST_TEST(r.problems.empty(), p.source << ": " << (r.problems.empty() ? "" : r.problems.front()));
+  if (rep) *rep = r;
+  return d;
+}
+
+/// The edges of segment `number` (each once).
+std::set<std::pair<vertex_id, vertex_id>> edges_of(const domain<3>& d, int number) {
+  std::set<std::pair<vertex_id, vertex_id>> e;
+  for (const auto& s : d.segments())
+    if (s.number() == number)
+      for (const auto& c : s.cell_data())
+        for (std::size_t i = 0; i < 4; ++i)
+          for (std::size_t j = i + 1; j < 4; ++j) e.insert({std::min(c[i], c[j]), std::max(c[i], c[j])});
+  return e;
+}
+
+/// Edges of segment `number` joining a vertex exactly on z = a to one exactly on z = b.
+std::size_t spanning(const domain<3>& d, int number, double a, double b) {
+  const auto& P = d.points();
+  std::size_t n = 0;
+  for (auto [u, v] : edges_of(d, number))
+    if ((P[u][2] == a && P[v][2] == b) || (P[u][2] == b && P[v][2] == a)) ++n;
+  return n;
+}
+
+}  // namespace
+
+// A 1e-3 film on a substrate 10 times as thick and 20 times as wide, and the same film between
+// two thick layers (a liner): at least two element layers across, i.e. no edge joins the film's
+// two faces, with no size given at all (--grade alone: the local feature size).
+BOOST_AUTO_TEST_CASE(thin_films_get_two_layers_without_a_size) {
+  pl::options o;
+  o.graded = true;
+  for (const auto& z : {std::vector<double>{0, 0.01, 0.011}, std::vector<double>{0, 0.01, 0.011, 0.02}}) {
+    pl::report r;
+    const auto d = mesh(stack(0.02, z), o, &r);
+    BOOST_TEST(!r.uniform_size);
+    BOOST_TEST(r.min_size < 0.5e-3);
+    BOOST_TEST(spanning(d, 2, 0.01, 0.011) == 0u);
+    // and the film is not refined beyond need: its edges are mostly above half the field's size
+    // there (0.45 of the thickness, less the pieces' radii: about 0.31e-3)
+    const auto& P = d.points();
+    std::size_t shorter = 0, all = 0;
+    for (auto [u, v] : edges_of(d, 2)) {
+      ++all;
+      shorter += distance(P[u], P[v]) < 0.5 * r.min_size;
+    }
+    BOOST_TEST(shorter < all / 10, shorter << " of " << all << " film edges below half of " << r.min_size);
+  }
+  // without the local feature size the film is crossed by single edges
+  o.sizing3.feature_size = false;
+  o.size = 0.004;
+  const auto d = mesh(stack(0.02, {0, 0.01, 0.011}), o);
+  BOOST_TEST(spanning(d, 2, 0.01, 0.011) > 0u);
+}
+
+// TetGen's region attribute: a maximum volume. The segment's edges are at most 1.5 times the edge
+// of the regular tetrahedron of that volume; the other layer, unconstrained but for --size, is
+// coarser, and graded: its edges grow with the distance from the interface.
+BOOST_AUTO_TEST_CASE(region_volume_constraints_are_obeyed) {
+  const double V = 1e-8, hR = sizing::size_of_measure(V, 3);
+  BOOST_TEST(std::abs(hR * hR * hR / (6 * std::sqrt(2.0)) - V) < 1e-15);
+  pl::options o;
+  o.size = 0.01;
+  o.sizing3.grade = 1.3;
+  const auto d = mesh(stack(0.04, {0, 0.02, 0.04}, {-1, V}), o);
+  const auto& P = d.points();
+  double longest = 0;
+  for (auto [u, v] : edges_of(d, 2)) longest = std::max(longest, distance(P[u], P[v]));
+  BOOST_TEST(longest <= 1.5 * hR, "longest edge " << longest << " against " << hR);
+  double far = 0;
+  for (auto [u, v] : edges_of(d, 1))
+    if (P[u][2] < 0.005 && P[v][2] < 0.005) far = std::max(far, distance(P[u], P[v]));
+  BOOST_TEST(far > 1.5 * hR);
+  // and the largest tetrahedron of the constrained segment is below the volume, as TetGen's -a
+  double vmax = 0;
+  for (const auto& s : d.segments())
+    if (s.number() == 2)
+      for (const auto& c : s.cell_data()) {
+        const point3 a = P[c[1]] - P[c[0]], b = P[c[2]] - P[c[0]], e = P[c[3]] - P[c[0]];
+        vmax = std::max(vmax, std::abs(dot(cross(a, b), e)) / 6);
+      }
+  BOOST_TEST(vmax <= V, "largest tetrahedron " << vmax);
+}
+
+// The sidecar's sizing keys, read and resolved against the PLC's segment names.
+BOOST_AUTO_TEST_CASE(sidecar_sizing_keys) {
+  const auto dir = std::filesystem::temp_directory_path() / "gsse_sizing_sidecar";
+  std::filesystem::create_directories(dir);
+  const auto json = (dir / "s.json").string();
+  {
+    std::ofstream f(json);
+    f << "{\"segments\": [\"layer1\", \"layer2\"],\n"
+         " \"sizes\": {\"layer2\": 0.002, \"1\": 0.05},\n"
+         " \"refine\": [{\"lo\": [0, 0, 0], \"hi\": [0.01, 0.01, 0.01], \"size\": 0.001}],\n"
+         " \"interfaces\": [{\"between\": [\"layer1\", \"layer2\"], \"size\": 0.0005}],\n"
+         " \"grade\": 1.2}\n";
+  }
+  const auto t = io::read_sidecar(json);
+  BOOST_TEST(t.sizing.sizes.size() == 2u);
+  BOOST_TEST(t.sizing.boxes.size() == 1u);
+  BOOST_TEST(t.sizing.interfaces.size() == 1u);
+  BOOST_TEST(t.sizing.grade == 1.2);
+  const auto p = stack(0.04, {0, 0.02, 0.04});
+  sizing::spec<3> s;
+  sizing::add_sidecar(s, t.sizing, p, json);
+  BOOST_TEST(s.segment_size.at(2) == 0.002);
+  BOOST_TEST(s.segment_size.at(1) == 0.05);
+  BOOST_TEST(s.interfaces.size() == 1u);
+  BOOST_TEST((s.interfaces[0].a == 1 && s.interfaces[0].b == 2));
+  BOOST_TEST(s.boxes[0].size == 0.001);
+  BOOST_TEST(s.grade == 1.2);
+  // an unknown segment is an error naming the file and line
+  {
+    std::ofstream f(json);
+    f << "{\"sizes\": {\n\"oxide\": 0.1}}\n";
+  }
+  try {
+    sizing::add_sidecar(s, io::read_sidecar(json).sizing, p, json);
+    BOOST_FAIL("no error for an unknown segment");
+  } catch (const io::io_error& e) {
+    BOOST_TEST(std::string(e.what()).find(json + ":2:") != std::string::npos, e.what());
+    BOOST_TEST(std::string(e.what()).find("oxide") != std::string::npos);
+  }
+  {
+    std::ofstream f(json);
+    f << "{\"refine\": [{\"lo\": [0, 0, 0], \"hi\": [1, 1], \"size\": 1}]}\n";
+  }
+  BOOST_CHECK_THROW(io::read_sidecar(json), io::io_error);
+  {
+    std::ofstream f(json);
+    f << "{\"sizes\": {\"layer1\": -1}}\n";
+  }
+  BOOST_CHECK_THROW(io::read_sidecar(json), io::io_error);
+  std::filesystem::remove_all(dir);
+}
+
+// A background mesh (.node/.ele/.mtr) with a size growing linearly in x: every edge is at most 1.5
+// times the size at its midpoint, and the field equals the background's linear interpolation.
+BOOST_AUTO_TEST_CASE(background_size_field_is_obeyed) {
+  const auto dir = std::filesystem::temp_directory_path() / "gsse_sizing_background";
+  std::filesystem::create_directories(dir);
+  const auto base = (dir / "bg").string();
+  auto hb = [](const point3& x) { return 0.003 + 0.2 * (x[0] + 0.01); };
+  {
+    // the cube [-0.01, 0.05]^3 as 6 tetrahedra (Kuhn)
+    std::ofstream n(base + ".node"), e(base + ".ele"), m(base + ".mtr");
+    n << "8 3 0 0\n";
+    m << "8 1\n";
+    for (int i = 0; i < 8; ++i) {
+      const point3 q{i & 1 ? 0.05 : -0.01, i & 2 ? 0.05 : -0.01, i & 4 ? 0.05 : -0.01};
+      n << i + 1 << " " << q[0] << " " << q[1] << " " << q[2] << "\n";
+      m << hb(q) << "\n";
+    }
+    e << "6 4 0\n";
+    const int kuhn[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
+    for (int t = 0; t < 6; ++t) e << t + 1 << " " << kuhn[t][0] + 1 << " " << kuhn[t][1] + 1 << " " << kuhn[t][2] + 1 << " " << kuhn[t][3] + 1 << "\n";
+  }
+  pl::options o;
+  o.graded = true;
+  o.sizing3.feature_size = false;
+  o.sizing3.grade = 1.3;
+  o.sizing3.background = sizing::read_background<3>(base + ".node");
+  const auto d = mesh(stack(0.04, {0, 0.04}), o);
+  const auto& P = d.points();
+  std::size_t over = 0, all = 0;
+  double worst = 0;
+  for (auto [u, v] : edges_of(d, 1)) {
+    const double r = distance(P[u], P[v]) / hb(0.5 * (P[u] + P[v]));
+    worst = std::max(worst, r);
+    over += r > 1.5;
+    ++all;
+  }
+  BOOST_TEST(over == 0u, over << " of " << all << " edges above 1.5 h, worst " << worst);
+  // the field is the background's interpolation (linear data: exact up to rounding)
+  sizing::spec<3> s;
+  s.feature_size = false;
+  s.background = o.sizing3.background;
+  const std::vector<point3> pts{{0, 0, 0}, {1, 0, 0}};
+  const std::vector<std::array<vertex_id, 3>> faces;
+  const sizing::size_field<3> f = sizing::build<3>({pts, 2, faces, {}, {}, "none"}, s);
+  std::mt19937 g(7);
+  std::uniform_real_distribution<double> u(-0.01, 0.05);
+  for (int i = 0; i < 100; ++i) {
+    const point3 x{u(g), u(g), u(g)};
+    BOOST_TEST(std::abs(f(x) - hb(x)) < 1e-12);
+  }
+  BOOST_TEST(std::isinf(f(point3{0.2, 0, 0})));  // outside the background mesh: no constraint
+  // a .mtr with the wrong count names the file
+  {
+    std::ofstream m(base + ".mtr");
+    m << "7 1\n";
+  }
+  try {
+    (void)sizing::read_background<3>(base);
+    BOOST_FAIL("no error for a short .mtr");
+  } catch (const std::exception& e) {
+    BOOST_TEST(std::string(e.what()).find("bg.mtr:1:") != std::string::npos, e.what());
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// Grading: h is Lipschitz with constant grade - 1 (neighbouring sizes differ by at most the
+// factor `grade` over one element), measured on random pairs; and in the mesh, the longest edge
+// at a vertex and at its neighbours differ by a bounded factor.
+BOOST_AUTO_TEST_CASE(grading_is_respected) {
+  for (double G : {1.2, 1.5}) {
+    const auto p = stack(0.02, {0, 0.01, 0.011, 0.03});
+    pl::options o;
+    o.graded = true;
+    o.sizing3.grade = G;
+    pl::report r;
+    const auto d = mesh(p, o, &r);
+    // the field itself, rebuilt as the pipeline does, through the public stages: sample it
+    // through the mesh's own points (the edges' midpoints)
+    const auto& P = d.points();
+    std::map<vertex_id, double> longest;
+    for (const auto& s : d.segments())
+      for (const auto& c : s.cell_data())
+        for (std::size_t i = 0; i < 4; ++i)
+          for (std::size_t j = i + 1; j < 4; ++j) {
+            const double l = distance(P[c[i]], P[c[j]]);
+            longest[c[i]] = std::max(longest[c[i]], l);
+            longest[c[j]] = std::max(longest[c[j]], l);
+          }
+    double worst = 0;
+    for (const auto& s : d.segments())
+      for (const auto& c : s.cell_data())
+        for (std::size_t i = 0; i < 4; ++i)
+          for (std::size_t j = i + 1; j < 4; ++j) {
+            const double a = longest[c[i]], b = longest[c[j]];
+            worst = std::max(worst, std::max(a, b) / std::min(a, b));
+          }
+    // a vertex's longest edge is its neighbour's edge too, so the ratio is bounded by the
+    // element shapes; it grows with G
+    BOOST_TEST(worst < 4 * G, "G " << G << ": neighbouring vertices' longest edges differ by " << worst);
+    // the smallest sizes are at the film; the top of the thick layer, 0.019 away, is coarser by
+    // about (G - 1) * 0.019
+    double top = 0;
+    for (auto [u, v] : edges_of(d, 3))
+      if (P[u][2] > 0.028 && P[v][2] > 0.028) top = std::max(top, distance(P[u], P[v]));
+    BOOST_TEST(top <= 1.5 * (r.min_size + (G - 1) * 0.02));
+    BOOST_TEST(top > r.min_size + 0.25 * (G - 1) * 0.017);
+  }
+}
+
+// The field's Lipschitz bound, exactly as stated: |h(x) - h(y)| <= (grade - 1) |x - y|.
+BOOST_AUTO_TEST_CASE(field_is_lipschitz) {
+  const std::vector<point3> pts{{0, 0, 0}, {0.05, 0, 0}, {0, 0.05, 0}, {0, 0, 0.001}, {0.05, 0, 0.001}, {0, 0.05, 0.001}};
+  const std::vector<std::array<vertex_id, 3>> faces{{0, 1, 2}, {3, 4, 5}};
+  const std::vector<std::uint32_t> src{0, 1};
+  const std::vector<std::array<int, 2>> sides{{1, 0}, {0, 1}};
+  sizing::spec<3> s;
+  s.grade = 1.25;
+  s.boxes.push_back({{0.05, 0.05, 0.05}, {0.06, 0.06, 0.06}, 0.002});
+  s.global = 0.02;
+  const auto f = sizing::build<3>({pts, 6, faces, src, sides, "two triangles"}, s);
+  BOOST_TEST(f.sources() > 0u);
+  BOOST_TEST(f.minimum() < 0.001);
+  std::mt19937 g(3);
+  std::uniform_real_distribution<double> u(-0.02, 0.12);
+  for (int i = 0; i < 2000; ++i) {
+    const point3 x{u(g), u(g), u(g)}, y{u(g), u(g), u(g)};
+    BOOST_TEST(std::abs(f(x) - f(y)) <= 0.25 * distance(x, y) * (1 + 1e-12) + 1e-15);
+  }
+  BOOST_TEST(f(point3{0.055, 0.055, 0.055}) == 0.002);
+  BOOST_TEST(f(point3{0.01, 0.01, 0.0005}) <= 0.45 * 0.001);
+  BOOST_TEST(f(point3{0.01, 0.01, 1}) == 0.02);
+}
