@@ -68,12 +68,14 @@ struct json_scan {
     enum kind_t { object, array, string, number, literal } kind = literal;
     std::string text;  // string
     double num = 0;    // number
-    std::vector<std::pair<std::string, value>> members;  // object
-    std::vector<value> items;                            // array
+    // object: keys[i] names items[i]; array: items (std::vector, unlike std::pair, may hold the
+    // incomplete type)
+    std::vector<std::string> keys;
+    std::vector<value> items;
     std::size_t pos = 0;
     const value* get(const std::string& k) const {
-      for (const auto& [n, v] : members)
-        if (n == k) return &v;
+      for (std::size_t i = 0; i < keys.size(); ++i)
+        if (keys[i] == k) return &items[i];
       return nullptr;
     }
   };
@@ -102,7 +104,8 @@ struct json_scan {
           i = skip_ws(i);
           if (i >= s.size() || s[i] != ':') fail(i, "expected ':'");
           ++i;
-          v.members.emplace_back(std::move(k), value_at(i, depth + 1));
+          v.keys.push_back(std::move(k));
+          v.items.push_back(value_at(i, depth + 1));
         } else {
           v.items.push_back(value_at(i, depth + 1));
         }
@@ -165,7 +168,10 @@ void read_sizing(const json_scan& j, sizing_table& t) {
   if (auto i = j.find_key("sizes"); i != std::string::npos) {
     const value v = j.value_at(i);
     if (v.kind != value::object) j.fail(v.pos, "\"sizes\" must be an object {\"<segment>\": <size>, ...}");
-    for (const auto& [name, h] : v.members) t.sizes.push_back({name, j.positive(h, "the size of segment '" + name + "'"), j.line_at(h.pos)});
+    for (std::size_t k = 0; k < v.keys.size(); ++k) {
+      const auto& h = v.items[k];
+      t.sizes.push_back({v.keys[k], j.positive(h, "the size of segment '" + v.keys[k] + "'"), j.line_at(h.pos)});
+    }
   }
   if (auto i = j.find_key("refine"); i != std::string::npos) {
     const value v = j.value_at(i);
