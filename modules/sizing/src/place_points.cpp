@@ -135,8 +135,6 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
   std::sort(all.begin(), all.end(), first);
   // classification in parallel: inside a segment and clear of the boundary by half the spacing
   std::vector<char> ok(all.size(), 0);
-  std::vector<std::size_t> idx(all.size());
-  std::iota(idx.begin(), idx.end(), std::size_t{0});
   constexpr std::size_t chunk = 1024;
   std::vector<std::size_t> chunks((all.size() + chunk - 1) / chunk);
   std::iota(chunks.begin(), chunks.end(), std::size_t{0});
