@@ -29,7 +29,7 @@ void usage(std::FILE* to) {
       "usage: gsse-mesh INPUT [-o OUTPUT] [--size H] [--cloud POINTS.node] [--threads N] [--verify]\n"
       "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
       "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly] [--msh 4.1|2.2] [--verify-tol R]\n"
-      "                 [--grade G] [--no-feature-size]\n"
+      "                 [--grade G] [--no-feature-size] [--quality [B]]\n"
       "       gsse-mesh INPUT --check MESH [--threads N] [--quiet] [--verify-tol R]\n"
       "  INPUT    TetGen .poly/.smesh (3D), Triangle .poly (2D), or a closed surface: OFF, STL,\n"
       "           Gmsh .msh surface mesh (its volumes become segments)\n"
@@ -43,6 +43,9 @@ void usage(std::FILE* to) {
       "           size, the .poly regions' maximum volumes and the sizing keys of INPUT's BASE.json\n"
       "           sidecar (per-segment sizes, refinement boxes, interface layers, background mesh)\n"
       "  --no-feature-size  leave the local feature size out of the size field\n"
+      "  --quality [B]  Delaunay refinement (modules/refinement/README.md): 3D, no tetrahedron with a\n"
+      "           radius-edge ratio above B (default 2.0, at least 1); 2D, no triangle with an angle\n"
+      "           below B degrees (default 20.7, at most 34); the mesh stays conforming Delaunay\n"
       "  --cloud  extra interior points (.node); points outside every segment are dropped\n"
       "  --verify check the mesh against the input (valid, conforming, labelled, Delaunay); if it\n"
       "           fails: exit status 3, no output written (neither -o nor --stats)\n"
@@ -65,7 +68,8 @@ void usage(std::FILE* to) {
 
 struct args {
   std::string input, output, cloud, stats, rules, fill, plc_out, check;
-  double size = 0, verify_tol = gsse::verify::options{}.facet_tolerance, grade = 0;
+  double size = 0, verify_tol = gsse::verify::options{}.facet_tolerance, grade = 0, quality_bound = 0;
+  bool quality = false;
   bool no_feature = false;
   unsigned threads = 1;
   bool verify = false, verify_tol_given = false, quiet = false, no_merge = false, msh22 = false;
@@ -107,6 +111,9 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.size = a.size;
   o.threads = a.threads;
   o.verify = a.verify;
+  o.quality = a.quality;
+  o.quality_bound = a.quality_bound;
+  if (a.quality) gsse::refinement::ratio_bound(D, a.quality_bound);  // a bound out of range is a usage error
   o.verify_tolerance = a.verify_tol;
   o.conform.max_steiner = a.max_steiner;
   {
@@ -201,6 +208,12 @@ int run(const gsse::plc<D>& p, const args& a) {
         std::printf(", %g and above: %zu", q.ratio_bounds.back(), q.ratio_histogram[k]);
     }
     std::printf("\n");
+    if (r.quality) {
+      const auto& st = r.refinement;
+      std::printf("  refinement: %s after %zu rounds, %zu circumcentres inserted, %zu boundary faces split;\n"
+                  "           %zu elements left above the bound (%zu excepted at small input angles)\n",
+                  st.converged ? "converged" : "stopped", st.rounds, st.inserted, st.split_requests, st.bad_left, st.excepted);
+    }
     for (const auto& t : r.times) std::printf("  %-8s %8.3f s\n", t.stage.c_str(), t.seconds);
   }
   if (!a.stats.empty() && problems.empty()) {  // a failed verification writes no file at all
@@ -222,7 +235,13 @@ int run(const gsse::plc<D>& p, const args& a) {
        << ", \"below_10\": " << q.below10 << ", \"above_170\": " << q.above170 << ", \"smallest_by_10_degrees\": [";
     for (std::size_t k = 0; k < q.angle_histogram.size(); ++k) js << (k ? ", " : "") << q.angle_histogram[k];
     js << "]}, \"uniform_size\": " << (r.uniform_size ? "true" : "false")
-       << ", \"min_size\": " << r.min_size << "}";
+       << ", \"min_size\": " << r.min_size;
+    if (r.quality)
+      js << ", \"refinement\": {\"bound\": " << gsse::refinement::ratio_bound(D, a.quality_bound) << ", \"converged\": "
+         << (r.refinement.converged ? "true" : "false") << ", \"rounds\": " << r.refinement.rounds
+         << ", \"inserted\": " << r.refinement.inserted << ", \"boundary_splits\": " << r.refinement.split_requests
+         << ", \"above_bound\": " << r.refinement.bad_left << ", \"excepted\": " << r.refinement.excepted << "}";
+    js << "}";
     js << ", \"verified\": " << (a.verify ? "true" : "null") << "}\n";
   }
   return verdict(problems, a.verify && !a.quiet, "verify");
@@ -283,6 +302,18 @@ int main(int argc, char** argv) {
       } else if (s == "--grade") {
         a.grade = std::stod(value());
         if (!(a.grade > 1) || !std::isfinite(a.grade)) throw std::invalid_argument("--grade must be a number above 1");
+      } else if (s == "--quality") {
+        a.quality = true;
+        // an optional number
+        if (i + 1 < argc) {
+          char* end = nullptr;
+          const double v = std::strtod(argv[i + 1], &end);
+          if (end && *end == 0 && end != argv[i + 1]) {
+            if (!(v > 0) || !std::isfinite(v)) throw std::invalid_argument("--quality bound must be a positive number");
+            a.quality_bound = v;
+            ++i;
+          }
+        }
       } else if (s == "--no-feature-size") {
         a.no_feature = true;
       } else if (s == "--verify") {

@@ -14,42 +14,14 @@
 #include "gsse/sizing/inputs.hpp"
 #include "gsse/sizing/size_field.hpp"
 #include "gsse/verify/verify.hpp"
+#include "support/stack.hpp"
 
 using namespace gsse;
 namespace pl = gsse::pipeline;
 
 namespace {
 
-/// Boxes stacked in z over [0, w] x [0, w]: layer k spans z[k]..z[k+1] and is segment k+1. The
-/// interfaces are shared facets; each layer has its own four side facets.
-plc<3> stack(double w, const std::vector<double>& z, const std::vector<double>& max_volume = {}) {
-  plc<3> p;
-  p.source = "stack";
-  const std::size_t n = z.size();
-  for (double zk : z)
-    for (auto [x, y] : {std::pair{0.0, 0.0}, {w, 0.0}, {w, w}, {0.0, w}}) p.points.push_back({x, y, zk});
-  auto ring = [](std::size_t k) { return static_cast<vertex_id>(4 * k); };
-  for (std::size_t k = 0; k < n; ++k) {
-    plc_facet f;
-    f.polygons.push_back({ring(k), ring(k) + 1, ring(k) + 2, ring(k) + 3});
-    p.facets.push_back(f);
-  }
-  for (std::size_t k = 0; k + 1 < n; ++k)
-    for (vertex_id s = 0; s < 4; ++s) {
-      plc_facet f;
-      f.polygons.push_back({ring(k) + s, ring(k) + (s + 1) % 4, ring(k + 1) + (s + 1) % 4, ring(k + 1) + s});
-      p.facets.push_back(f);
-    }
-  for (std::size_t k = 0; k + 1 < n; ++k) {
-    plc_region<3> r;
-    r.at = {0.37 * w, 0.41 * w, 0.5 * (z[k] + z[k + 1])};
-    r.number = static_cast<int>(k + 1);
-    r.name = "layer" + std::to_string(k + 1);
-    if (k < max_volume.size()) r.max_volume = max_volume[k];
-    p.regions.push_back(r);
-  }
-  return p;
-}
+using gsse::test::stack;
 
 domain<3> mesh(const plc<3>& p, pl::options o, pl::report* rep = nullptr) {
   o.verify = true;

@@ -149,6 +149,64 @@ class state {
       throw conform_error(plc_.source + ": more than " + std::to_string(opt_.max_steiner) +
                           " boundary points inserted; the input likely has features far below the mesh size "
                           "(raise --max-steiner to continue)");
+    const vertex_id v = push_point(q, h);
+    ++out_.steiner;
+    return v;
+  }
+
+  /// resume(): the points of an earlier result beyond the PLC's and the volume ones, with their
+  /// homes, in order (ids kept), each boundary one on its edge's chain (by its place along the
+  /// edge) or in its facet; then `added` free points. The earlier result's volume points take
+  /// back the homes they were given (a volume point exactly on the boundary became a vertex of it).
+  void restore(const boundary<D>& prev, const std::vector<point<D>>& added) {
+    if (prev.points.size() < out_.points.size() || prev.plc_points != out_.plc_points)
+      throw conform_error(plc_.source + ": resume() given a boundary of another input");
+    for (vertex_id v = static_cast<vertex_id>(out_.plc_points); v < prev.points.size(); ++v) {
+      if (v < out_.points.size())
+        out_.homes[v] = prev.homes[v];
+      else
+        push_point(prev.points[v], prev.homes[v]);
+      if (prev.homes[v].kind == home::facet) on_facet(prev.homes[v].id, v);
+    }
+    out_.steiner = prev.steiner;
+    out_.rounds = prev.rounds;
+    const auto& p = out_.points;
+    std::vector<std::vector<vertex_id>> on(edges_.size());
+    for (vertex_id v = static_cast<vertex_id>(out_.plc_points); v < p.size(); ++v)
+      if (out_.homes[v].kind == home::edge) on.at(out_.homes[v].id).push_back(v);
+    for (std::uint32_t e = 0; e < edges_.size(); ++e) {
+      auto& E = edges_[e];
+      const point<D> a = p[E.u], d = p[E.v] - p[E.u];
+      auto& mid = on[e];
+      std::sort(mid.begin(), mid.end(), [&](vertex_id x, vertex_id y) { return dot(p[x] - a, d) < dot(p[y] - a, d); });
+      E.chain.clear();
+      E.chain.push_back(E.u);
+      E.chain.insert(E.chain.end(), mid.begin(), mid.end());
+      E.chain.push_back(E.v);
+    }
+    for (const auto& q : added) push_point(q, {home::free, 0});
+  }
+  virtual void on_facet(std::uint32_t, vertex_id) {}
+  virtual ~state() = default;
+
+  /// Splits subsegment (a, b) of PLC edge e as one too long is split (the on-carrier rule: a shell
+  /// about a small-angle end, else the midpoint); false if (a, b) is no longer a subsegment.
+  bool split_requested(std::uint32_t e, vertex_id a, vertex_id b) {
+    auto& E = edges_.at(e);
+    for (std::size_t i = 0; i + 1 < E.chain.size(); ++i)
+      if ((E.chain[i] == a && E.chain[i + 1] == b) || (E.chain[i] == b && E.chain[i + 1] == a)) {
+        if (protected_subsegment(e, i)) return false;
+        std::optional<rules::split_action> fired;
+        const point<D> q = subsegment_split(e, i, relation::on_carrier, out_.points[a], nullptr, fired);
+        const vertex_id m = add_point(q, {home::edge, e});
+        E.chain.insert(E.chain.begin() + static_cast<long>(i) + 1, m);
+        return true;
+      }
+    return false;
+  }
+
+ private:
+  vertex_id push_point(const point<D>& q, home h) {
     out_.points.push_back(q);
     out_.homes.push_back(h);
     const auto v = static_cast<vertex_id>(out_.points.size() - 1);
@@ -163,9 +221,10 @@ class state {
       grid_.insert(v, q);
     }
     for (std::size_t k = 0; k < D; ++k) box_lo_[k] = std::min(box_lo_[k], q[k]), box_hi_[k] = std::max(box_hi_[k], q[k]);
-    ++out_.steiner;
     return v;
   }
+
+ public:
 
   /// Registers PLC edge (u,v) once; returns its index.
   std::uint32_t edge_id(vertex_id u, vertex_id v, std::size_t line) {
@@ -1693,6 +1752,43 @@ class state3 : public state<3> {
       else
         seed_facets();
     }
+    return rounds({});
+  }
+
+  void on_facet(std::uint32_t f, vertex_id v) override { facets_.at(f).interior.push_back(v); }
+
+  /// resume(): after restore(), the subfacets `split` of `prev` (by index) are split in the first
+  /// round as too large ones are (circumcentre, or the subsegment it encroaches), then rounds.
+  boundary<3> resume_run(const boundary<3>& prev, const std::vector<std::size_t>& split) {
+    std::map<std::uint32_t, std::uint32_t> facet_of;  // input facet naming a facet -> facet
+    for (std::uint32_t f = 0; f < facets_.size(); ++f) facet_of[facets_[f].source] = f;
+    std::map<std::uint32_t, std::vector<std::array<vertex_id, 3>>> wanted;
+    for (auto k : split) {
+      auto it = facet_of.find(prev.face_source.at(k));
+      if (it == facet_of.end()) continue;
+      auto T = prev.faces[k];
+      std::sort(T.begin(), T.end());
+      wanted[it->second].push_back(T);
+    }
+    conform_segments();
+    std::vector<std::uint32_t> all(facets_.size());
+    std::iota(all.begin(), all.end(), 0u);
+    triangulate_all(all);
+    std::vector<split_candidate> first;
+    for (auto& [f, Ts] : wanted) {
+      std::sort(Ts.begin(), Ts.end());
+      const auto& tri = facets_[f].triangles;
+      for (std::uint32_t t = 0; t < tri.size(); ++t) {
+        auto T = tri[t];
+        std::sort(T.begin(), T.end());
+        if (std::binary_search(Ts.begin(), Ts.end(), T)) first.push_back({f, t, no_vertex});
+      }
+    }
+    return rounds(first);
+  }
+
+  /// Rounds until no subfacet is split; `first` (sorted by facet and triangle) joins the first.
+  boundary<3> rounds(std::vector<split_candidate> first) {
     std::vector<std::size_t> seen(facets_.size(), 0);
     const bool trace = trace_on_;
     for (;;) {
@@ -1703,7 +1799,15 @@ class state3 : public state<3> {
         if (vertex_count(f) != seen[f]) changed.push_back(f);
       triangulate_all(changed);
       for (auto f : changed) seen[f] = vertex_count(f);
-      const std::size_t facet_splits = conform_facets(flat_pairs(changed));
+      auto extra = flat_pairs(changed);
+      if (!first.empty()) {
+        extra.insert(extra.end(), first.begin(), first.end());
+        std::sort(extra.begin(), extra.end(), [](const split_candidate& x, const split_candidate& y) {
+          return std::tuple(x.f, x.t, !x.flat) < std::tuple(y.f, y.t, !y.flat);
+        });
+        first.clear();
+      }
+      const std::size_t facet_splits = conform_facets(extra);
       if (trace) {
         opt_.trace("conform round " + std::to_string(out_.rounds) + ": " + std::to_string(seg_splits) +
                    " subsegment splits, " + std::to_string(facet_splits) + " subfacet splits, " +
@@ -1732,13 +1836,8 @@ class state3 : public state<3> {
 
 }  // namespace
 
-boundary<2> conform(const plc<2>& p, const std::vector<point2>& volume, const options& o) {
-  state<2> s(p, volume, o);
-  for (const auto& e : p.edges) s.edge_id(e[0], e[1], 0);
-  s.find_acute();
-  s.presplit_edges();
-  ++s.out().rounds;
-  s.conform_segments();
+namespace {
+boundary<2> finish2(state<2>& s) {
   auto& out = s.out();
   for (std::uint32_t e = 0; e < s.edges().size(); ++e) {
     const auto& ch = s.edges()[e].chain;
@@ -1749,10 +1848,52 @@ boundary<2> conform(const plc<2>& p, const std::vector<point2>& volume, const op
   }
   return std::move(out);
 }
+}  // namespace
+
+boundary<2> conform(const plc<2>& p, const std::vector<point2>& volume, const options& o) {
+  state<2> s(p, volume, o);
+  for (const auto& e : p.edges) s.edge_id(e[0], e[1], 0);
+  s.find_acute();
+  s.presplit_edges();
+  ++s.out().rounds;
+  s.conform_segments();
+  return finish2(s);
+}
+
 
 boundary<3> conform(const plc<3>& p, const std::vector<point3>& volume, const options& o) {
   state3 s(p, volume, o);
   return s.run();
+}
+
+namespace {
+template <std::size_t D>
+std::vector<point<D>> original_volume(const boundary<D>& prev) {
+  const auto first = prev.points.begin() + static_cast<long>(std::min(prev.points.size(), prev.plc_points));
+  return {first, first + static_cast<long>(std::min(prev.volume_points, prev.points.size() - prev.plc_points))};
+}
+}  // namespace
+
+boundary<2> resume(const plc<2>& p, const boundary<2>& prev, const std::vector<point2>& added,
+                   const std::vector<std::size_t>& split, const options& o) {
+  state<2> s(p, original_volume(prev), o);
+  for (const auto& e : p.edges) s.edge_id(e[0], e[1], 0);
+  s.find_acute();
+  s.restore(prev, added);
+  ++s.out().rounds;
+  for (auto k : split) {
+    const auto& F = prev.faces.at(k);
+    s.split_requested(prev.face_source.at(k), F[0], F[1]);
+  }
+  s.conform_segments();
+  return finish2(s);
+}
+
+boundary<3> resume(const plc<3>& p, const boundary<3>& prev, const std::vector<point3>& added,
+                   const std::vector<std::size_t>& split, const options& o) {
+  state3 s(p, original_volume(prev), o);
+  s.restore(prev, added);
+  return s.resume_run(prev, split);
 }
 
 namespace {

@@ -533,10 +533,10 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   }
   r.volume_points = volume.size();
   lap("sizing");
-  const auto b = conform<D>{}(p, volume, co);
+  auto b = conform<D>{}(p, volume, co);
   r.steiner = b.steiner;
   lap("conform");
-  const auto l = conformer::label(b, p, o.threads);
+  auto l = conformer::label(b, p, o.threads);
   lap("label");
   rules::rule_set defaults;
   front::creation_options fo;
@@ -547,6 +547,21 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     fo.too_far = o.too_far;
   }
   auto d = mesh_segments<D>{creating ? &fo : nullptr, &r.creation}(b, l, o.threads);
+  if (o.quality) {
+    // Delaunay refinement (modules/refinement): rounds of circumcentres and boundary splits, the
+    // boundary resumed and the segments meshed again each round
+    lap("mesh");
+    refinement::options ro;
+    ro.bound = o.quality_bound;
+    ro.threads = o.threads;
+    ro.progress = o.progress;
+    const refinement::mesher<D> again = [&](const conformer::boundary<D>& bb, const conformer::labelling& ll) {
+      return mesh_segments<D>{}(bb, ll, o.threads);
+    };
+    d = refinement::refine(p, b, l, std::move(d), co, ro, again, r.refinement);
+    r.quality = true;
+    r.steiner = b.steiner;
+  }
   // the input's markers on the faces that lie on marked facets (every boundary face is a mesh
   // face: the mesh conforms), for the writers
   for (std::size_t f = 0; f < b.faces.size(); ++f) {
@@ -559,7 +574,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     if (marker != 0) d.marked_faces().push_back({b.faces[f], marker});
   }
   d.marker_names() = p.marker_names;
-  lap("mesh");
+  lap(o.quality ? "quality" : "mesh");
   if (o.verify) {
     // against the input PLC itself, not the conformed boundary and labels the mesh was made from
     verify::options vo;

@@ -61,6 +61,18 @@ struct boundary {
 boundary<2> conform(const plc<2>& p, const std::vector<point2>& volume, const options& o = {});
 boundary<3> conform(const plc<3>& p, const std::vector<point3>& volume, const options& o = {});
 
+/// Resumes conforming from `previous`, a result of conform() or resume() for the same PLC, volume
+/// points and options: its points keep their ids and homes, the `added` free points follow them,
+/// and its faces listed in `split` (indices into previous.faces) are split as too large ones are
+/// (2D: the midpoint, or a shell about a small-angle end; 3D: the circumcentre, or the subsegment
+/// of its facet that it encroaches; a face no longer there is skipped). Then the usual rounds
+/// until nothing is encroached. Every boundary point of `previous` stays one: the boundary is
+/// only ever refined, which is what Delaunay refinement (modules/refinement) needs.
+boundary<2> resume(const plc<2>& p, const boundary<2>& previous, const std::vector<point2>& added,
+                   const std::vector<std::size_t>& split, const options& o = {});
+boundary<3> resume(const plc<3>& p, const boundary<3>& previous, const std::vector<point3>& added,
+                   const std::vector<std::size_t>& split, const options& o = {});
+
 /// Post-check: every encroached element of `b`, as (face index, encroaching vertex). Empty means
 /// the boundary is conforming. Decided with exact predicates and the tie rule above. In 3D it
 /// checks the subfacets only: a subfacet of the Delaunay triangulation brings its edges along, so

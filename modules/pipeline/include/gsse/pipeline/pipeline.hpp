@@ -14,6 +14,7 @@
 #include "gsse/container/domain.hpp"
 #include "gsse/container/plc.hpp"
 #include "gsse/front/point_creation.hpp"
+#include "gsse/refinement/refinement.hpp"
 #include "gsse/sizing/size_field.hpp"
 #include "gsse/verify/verify.hpp"
 
@@ -36,6 +37,10 @@ struct options {
   fill interior = fill::lattice;
   const rules::front_rule_set* front_rules = nullptr;  // fill::rules; nullptr: the embedded default
   double too_far = front::creation_options{}.too_far;  // fill::rules: create points for faces whose apex ball exceeds too_far*H
+  // Delaunay refinement for quality (modules/refinement): 3D radius-edge bound, 2D smallest angle
+  // in degrees; 0: the default (2.0, 20.7 degrees)
+  bool quality = false;
+  double quality_bound = 0;
   unsigned threads = 1;  // threads shared by the stages (0: every hardware thread, execution::thread_count)
   bool verify = false;   // run the library verifier (gsse::verify::check against the input PLC) at the end
   double verify_tolerance = verify::options{}.facet_tolerance;  // the verifier's facet tolerance
@@ -55,6 +60,8 @@ struct report {
   double min_size = 0;          // the size field's smallest value (0: no sizing)
   std::size_t size_sources = 0;  // boundary pieces carrying the field's local terms
   front::creation_stats creation{};  // fill::rules
+  bool quality = false;              // options::quality was set
+  refinement::stats refinement{};    // its rounds, insertions and the elements left above the bound
   std::vector<std::string> problems;  // from the verifier, when options::verify
 };
 

@@ -1,0 +1,75 @@
+#pragma once
+// Delaunay refinement for element quality that keeps the mesh conforming Delaunay (issue 17).
+//
+// Ruppert's and Shewchuk's algorithm, by rounds over the whole mesh: every element whose
+// radius-edge ratio exceeds the bound (2D: whose smallest angle is below it) proposes its
+// circumcentre. A circumcentre inside the diametral (2D) or equatorial (3D) ball of a boundary
+// face is not inserted; that face is split instead, as a too large one is (midpoint, shell,
+// circumcentre or the subsegment it encroaches: the conformer's rules). The others are inserted
+// free, in order of decreasing circumradius, each at least its own circumradius from the ones
+// taken before it in the round (so a batch is as good as some sequential order of Ruppert's
+// insertions). The boundary is then resumed, never rebuilt (conformer::resume: every boundary
+// point stays, the new free points are conformed to like any), labelled and meshed again.
+// Decisions on the mesh (encroachment) are exact predicates; the quality test itself compares
+// doubles, which only selects which points are proposed.
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gsse/conformer/conformer.hpp"
+#include "gsse/conformer/regions.hpp"
+#include "gsse/container/domain.hpp"
+#include "gsse/container/plc.hpp"
+
+namespace gsse::refinement {
+
+struct options {
+  // 3D: the radius-edge bound (circumradius / shortest edge), 2.0 by default, at least
+  // min_ratio3; 2D: the smallest angle in degrees, 20.7 by default, at most max_angle2
+  double bound = 0;
+  std::size_t max_rounds = 60;      // rounds before giving up (the elements left are reported)
+  std::size_t max_points = 20'000'000;  // points in the mesh before giving up
+  unsigned threads = 1;
+  std::function<void(const std::string&)> progress;  // one line per round, may be empty
+};
+
+inline constexpr double default_ratio3 = 2.0, min_ratio3 = 1.0;
+inline constexpr double default_angle2 = 20.7, max_angle2 = 34.0;
+
+/// The radius-edge bound an options::bound means in dimension D.
+double ratio_bound(std::size_t dimension, double bound);
+
+struct stats {
+  std::size_t rounds = 0;
+  std::size_t inserted = 0;        // free points inserted (circumcentres)
+  std::size_t split_requests = 0;  // boundary faces split because a circumcentre encroached them
+  std::size_t bad_left = 0;        // elements above the bound at the end (0 when it converged)
+  std::size_t excepted = 0;        // of those, at a small input angle (see README)
+  bool converged = false;
+};
+
+/// What one round decides from a conforming Delaunay mesh `d` of boundary `b`.
+template <std::size_t D>
+struct plan {
+  std::vector<point<D>> add;       // free points to insert
+  std::vector<std::size_t> split;  // faces of b to split
+  std::size_t bad = 0;             // elements above the bound
+  std::size_t excepted = 0;        // of those, excepted (small input angle)
+};
+template <std::size_t D>
+plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double ratio_bound, unsigned threads);
+
+/// Meshes the segments of a labelled boundary (the pipeline's mesh_segments).
+template <std::size_t D>
+using mesher = std::function<domain<D>(const conformer::boundary<D>&, const conformer::labelling&)>;
+
+/// Refines `d`, the mesh of boundary `b` (labelled `l`) of PLC `p`, until no element exceeds the
+/// bound except the excepted ones, or the round or point cap is reached (stats says which).
+/// `b` and `l` are updated with the mesh. `co`: the conformer options `b` was made with.
+template <std::size_t D>
+domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labelling& l, domain<D> d,
+                 const conformer::options& co, const options& o, const mesher<D>& mesh, stats& st);
+
+}  // namespace gsse::refinement

@@ -1,0 +1,144 @@
+#define BOOST_TEST_MODULE refinement
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "gsse/conformer/conformer.hpp"
+#include "gsse/io/poly.hpp"
+#include "gsse/pipeline/pipeline.hpp"
+#include "gsse/refinement/refinement.hpp"
+#include "support/shared.hpp"
+#include "support/stack.hpp"
+
+using namespace gsse;
+namespace pl = gsse::pipeline;
+
+namespace {
+
+using gsse::test::turn;
+
+plc<3> stack(double w, const std::vector<double>& z, bool rotated = false) {
+  return gsse::test::stack(w, z, {}, rotated);
+}
+
+/// A planar device: a substrate with a thin oxide strip and a gate on it (right angles only).
+plc<2> device2d() {
+  plc<2> p;
+  p.source = "device2d";
+  p.points = {{0, 0}, {4, 0}, {4, 1}, {0, 1}, {1.5, 1}, {2.5, 1}, {2.5, 1.05}, {1.5, 1.05}, {1.5, 1.6}, {2.5, 1.6}};
+  p.edges = {{0, 1}, {1, 2}, {2, 5}, {5, 4}, {4, 3}, {3, 0}, {5, 6}, {6, 7}, {7, 4}, {6, 9}, {9, 8}, {8, 7}};
+  p.edge_markers.assign(p.edges.size(), 0);
+  p.regions.push_back({{2, 0.5}, 1, -1, "substrate"});
+  p.regions.push_back({{2, 1.02}, 2, -1, "oxide"});
+  p.regions.push_back({{2, 1.3}, 3, -1, "gate"});
+  return p;
+}
+
+template <std::size_t D>
+domain<D> refined(const plc<D>& p, double bound, unsigned threads, pl::report& r, double size = 0) {
+  pl::options o;
+  o.size = size;
+  o.graded = true;
+  o.quality = true;
+  o.quality_bound = bound;
+  o.verify = true;
+  o.threads = threads;
+  auto d = pl::mesh(p, {}, o, r);
+  BOOST_TEST(r.problems.empty(), p.source << ": " << (r.problems.empty() ? "" : r.problems.front()));
+  return d;
+}
+
+}  // namespace
+
+// --quality 1.414 in 3D: no tetrahedron above the bound, the mesh verified (valid, conforming,
+// labelled, Delaunay against the input), on the axis-aligned and the rotated stack.
+BOOST_AUTO_TEST_CASE(radius_edge_bound_3d) {
+  for (bool rotated : {false, true}) {
+    pl::report r;
+    const auto d = refined(stack(1, {0, 0.4, 0.5, 1}, rotated), 1.414, 2, r, 0.2);
+    const auto q = pl::measure(d);
+    BOOST_TEST(r.refinement.converged);
+    BOOST_TEST(r.refinement.bad_left == 0u);
+    BOOST_TEST(r.refinement.rounds > 0u);
+    BOOST_TEST(q.max_ratio <= 1.414 * (1 + 1e-9), (rotated ? "rotated: " : "") << "max radius-edge " << q.max_ratio);
+  }
+}
+
+// 2D smallest angles 20.7 (Ruppert's bound) and 28 degrees.
+BOOST_AUTO_TEST_CASE(minimum_angle_2d) {
+  for (double angle : {20.7, 28.0}) {
+    pl::report r;
+    const auto d = refined(device2d(), angle, 2, r);
+    const auto q = pl::measure(d);
+    BOOST_TEST(r.refinement.converged, angle << " degrees: " << r.refinement.bad_left << " left");
+    BOOST_TEST(q.min_angle >= angle - 1e-6, angle << " degrees asked, " << q.min_angle << " found");
+  }
+}
+
+// The same points and cells for 1 and 2 threads.
+BOOST_AUTO_TEST_CASE(deterministic_for_any_thread_count) {
+  pl::report r1, r2;
+  const auto a = refined(stack(1, {0, 0.4, 1}, true), 1.6, 1, r1);
+  const auto b = refined(stack(1, {0, 0.4, 1}, true), 1.6, 2, r2);
+  BOOST_TEST(a.points() == b.points());
+  BOOST_REQUIRE(a.segments().size() == b.segments().size());
+  for (std::size_t k = 0; k < a.segments().size(); ++k) {
+    const auto x = a.segments()[k].cell_data(), y = b.segments()[k].cell_data();
+    BOOST_TEST(std::equal(x.begin(), x.end(), y.begin(), y.end()));
+  }
+}
+
+// conformer::resume refines: every point keeps its id, position and home; requested faces are
+// split; the result is conforming (no encroached face, the exact post-check).
+BOOST_AUTO_TEST_CASE(resume_only_refines_the_boundary) {
+  const auto p = stack(1, {0, 0.5, 1}, true);
+  conformer::options co;
+  co.size = 0.3;
+  const auto b = conformer::conform(p, {}, co);
+  BOOST_REQUIRE(conformer::encroached(b).empty());
+  const std::vector<point3> added{turn(point3{0.5, 0.5, 0.25}), turn(point3{0.2, 0.7, 0.75})};
+  const std::vector<std::size_t> split{0, b.faces.size() / 2};
+  const auto c = conformer::resume(p, b, added, split, co);
+  BOOST_REQUIRE(c.points.size() > b.points.size() + added.size());
+  for (std::size_t v = 0; v < b.points.size(); ++v) {
+    BOOST_TEST((c.points[v] == b.points[v]));
+    BOOST_TEST((c.homes[v].kind == b.homes[v].kind && c.homes[v].id == b.homes[v].id));
+  }
+  for (std::size_t k = 0; k < added.size(); ++k) BOOST_TEST((c.points[b.points.size() + k] == added[k]));
+  BOOST_TEST(conformer::encroached(c).empty());
+  // the requested faces are gone
+  for (auto f : split) {
+    auto F = b.faces[f];
+    std::sort(F.begin(), F.end());
+    const bool still = std::any_of(c.faces.begin(), c.faces.end(), [&](auto G) {
+      std::sort(G.begin(), G.end());
+      return G == F;
+    });
+    BOOST_TEST(!still);
+  }
+}
+
+// The benchmark structures (../shared): 2D MOSFET at 28 degrees, 3D diffusion at 1.414.
+BOOST_AUTO_TEST_CASE(bench_structures_refined) {
+  const auto shared = gsse::test::shared_dir();
+  if (!shared) {
+    std::puts("SKIPPED: ../shared absent");
+    return;
+  }
+  {
+    const auto p = std::get<plc<2>>(io::read_plc(gsse::test::bench_structure(*shared, "mosfet", 2)));
+    pl::report r;
+    const auto d = refined(p, 28.0, 2, r);
+    BOOST_TEST(r.refinement.converged);
+    BOOST_TEST(pl::measure(d).min_angle >= 28 - 1e-6);
+  }
+  {
+    const auto p = std::get<plc<3>>(io::read_plc(gsse::test::bench_structure(*shared, "diffusion", 3)));
+    pl::report r;
+    const auto d = refined(p, 1.414, 2, r);
+    BOOST_TEST(r.refinement.converged);
+    BOOST_TEST(pl::measure(d).max_ratio <= 1.414 * (1 + 1e-9));
+  }
+}
