@@ -211,8 +211,8 @@ int run(const gsse::plc<D>& p, const args& a) {
     if (r.quality) {
       const auto& st = r.refinement;
       std::printf("  refinement: %s after %zu rounds, %zu circumcentres inserted, %zu boundary faces split;\n"
-                  "           %zu elements left above the bound (%zu excepted at small input angles)\n",
-                  st.converged ? "converged" : "stopped", st.rounds, st.inserted, st.split_requests, st.bad_left, st.excepted);
+                  "           %zu elements left above the bound\n",
+                  st.converged ? "converged" : "stopped", st.rounds, st.inserted, st.split_requests, st.bad_left);
     }
     for (const auto& t : r.times) std::printf("  %-8s %8.3f s\n", t.stage.c_str(), t.seconds);
   }
