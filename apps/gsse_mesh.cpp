@@ -45,7 +45,7 @@ void usage(std::FILE* to) {
       "  --no-feature-size  leave the local feature size out of the size field\n"
       "  --quality [B]  Delaunay refinement (modules/refinement/README.md): 3D, no tetrahedron with a\n"
       "           radius-edge ratio above B (default 2.0, at least 1); 2D, no triangle with an angle\n"
-      "           below B degrees (default 20.7, at most 34); the mesh stays conforming Delaunay\n"
+      "           below B degrees (default 20.7, at most 33); the mesh stays conforming Delaunay\n"
       "  --cloud  extra interior points (.node); points outside every segment are dropped\n"
       "  --verify check the mesh against the input (valid, conforming, labelled, Delaunay); if it\n"
       "           fails: exit status 3, no output written (neither -o nor --stats)\n"

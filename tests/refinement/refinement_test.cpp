@@ -66,14 +66,26 @@ BOOST_AUTO_TEST_CASE(radius_edge_bound_3d) {
   }
 }
 
-// 2D smallest angles 20.7 (Ruppert's bound) and 28 degrees.
+// 2D smallest angles 20.7 (Ruppert's bound), 28 and 33 degrees; the interior points come from the
+// refinement (no lattice), and the triangles still obey the size field: with --size 0.2 (the field
+// is at most 0.2 everywhere) no circumradius exceeds 0.2/sqrt 3.
 BOOST_AUTO_TEST_CASE(minimum_angle_2d) {
-  for (double angle : {20.7, 28.0}) {
+  for (double angle : {20.7, 28.0, 33.0}) {
     pl::report r;
-    const auto d = refined(device2d(), angle, 2, r);
+    const auto d = refined(device2d(), angle, 2, r, 0.2);
     const auto q = pl::measure(d);
     BOOST_TEST(r.refinement.converged, angle << " degrees: " << r.refinement.bad_left << " left");
     BOOST_TEST(q.min_angle >= angle - 1e-6, angle << " degrees asked, " << q.min_angle << " found");
+    BOOST_TEST(r.volume_points == 0u);  // no lattice
+    const auto& P = d.points();
+    double largest = 0;
+    for (const auto& s : d.segments())
+      for (const auto& c : s.cell_data()) {
+        const double a = distance(P[c[1]], P[c[2]]), b = distance(P[c[0]], P[c[2]]), e = distance(P[c[0]], P[c[1]]);
+        const point2 u = P[c[1]] - P[c[0]], v = P[c[2]] - P[c[0]];
+        largest = std::max(largest, a * b * e / (2 * std::abs(u[0] * v[1] - u[1] * v[0])));
+      }
+    BOOST_TEST(largest <= 0.2 / std::sqrt(3.0) * (1 + 1e-9), "largest circumradius " << largest);
   }
 }
 
@@ -86,6 +98,13 @@ BOOST_AUTO_TEST_CASE(deterministic_for_any_thread_count) {
   BOOST_REQUIRE(a.segments().size() == b.segments().size());
   for (std::size_t k = 0; k < a.segments().size(); ++k) {
     const auto x = a.segments()[k].cell_data(), y = b.segments()[k].cell_data();
+    BOOST_TEST(std::equal(x.begin(), x.end(), y.begin(), y.end()));
+  }
+  pl::report r3, r4;
+  const auto e = refined(device2d(), 33.0, 1, r3), f = refined(device2d(), 33.0, 2, r4);
+  BOOST_TEST(e.points() == f.points());
+  for (std::size_t k = 0; k < e.segments().size(); ++k) {
+    const auto x = e.segments()[k].cell_data(), y = f.segments()[k].cell_data();
     BOOST_TEST(std::equal(x.begin(), x.end(), y.begin(), y.end()));
   }
 }
@@ -120,7 +139,7 @@ BOOST_AUTO_TEST_CASE(resume_only_refines_the_boundary) {
   }
 }
 
-// The benchmark structures (../shared): 2D MOSFET at 28 degrees, 3D diffusion at 1.414.
+// The benchmark structures (../shared): 2D MOSFET at 33 degrees, 3D diffusion at 1.414.
 BOOST_AUTO_TEST_CASE(bench_structures_refined) {
   const auto shared = gsse::test::shared_dir();
   if (!shared) {
@@ -130,9 +149,9 @@ BOOST_AUTO_TEST_CASE(bench_structures_refined) {
   {
     const auto p = std::get<plc<2>>(io::read_plc(gsse::test::bench_structure(*shared, "mosfet", 2)));
     pl::report r;
-    const auto d = refined(p, 28.0, 2, r);
+    const auto d = refined(p, 33.0, 2, r);
     BOOST_TEST(r.refinement.converged);
-    BOOST_TEST(pl::measure(d).min_angle >= 28 - 1e-6);
+    BOOST_TEST(pl::measure(d).min_angle >= 33 - 1e-6);
   }
   {
     const auto p = std::get<plc<3>>(io::read_plc(gsse::test::bench_structure(*shared, "diffusion", 3)));

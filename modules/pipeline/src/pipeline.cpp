@@ -495,6 +495,11 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   co.size = o.size;
   co.threads = o.threads;
   const bool creating = o.interior == fill::rules && o.size > 0;
+  // 2D with --quality: the refinement places the interior points (circumcentres of triangles too
+  // large for the size field, as Triangle does), not a lattice: a point inserted into an
+  // equilateral lattice leaves 30-30-120 triangles, and above 30 degrees each fix made the next
+  // (the benchmark structures did not converge at 31-34 degrees with the lattice)
+  const bool refined_interior = D == 2 && o.quality && !creating;
   std::vector<point<D>> volume;
   sizing::size_field<D> field;
   // a region's maximum volume (TetGen's region attribute) is a size constraint of its own
@@ -519,16 +524,17 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     r.min_size = field.minimum();
     r.size_sources = field.sources();
     if (field.uniform()) {
-      volume = lattice_points(m, o.size, cloud, r.dropped_points, o.threads, o.size > 0);
+      volume = lattice_points(m, o.size, cloud, r.dropped_points, o.threads, o.size > 0 && !refined_interior);
     } else {
-      volume = field_points(m, field, cloud, r.dropped_points, o.threads);
+      volume = refined_interior ? lattice_points(m, 0, cloud, r.dropped_points, o.threads, false)
+                                : field_points(m, field, cloud, r.dropped_points, o.threads);
       if constexpr (D == 2)
         co.local_size2 = [&field](const point2& x) { return field(x); };
       else
         co.local_size3 = [&field](const point3& x) { return field(x); };
     }
   } else {
-    volume = size_points<D>{}(p, o.size, cloud, r.dropped_points, co, !creating);
+    volume = size_points<D>{}(p, o.size, cloud, r.dropped_points, co, !creating && !refined_interior);
     r.min_size = o.size;
   }
   r.volume_points = volume.size();
@@ -555,6 +561,14 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     ro.bound = o.quality_bound;
     ro.threads = o.threads;
     ro.progress = o.progress;
+    if (refined_interior) {
+      if constexpr (D == 2) {
+        if (!field.uniform())
+          ro.size2 = [&field](const point2& x) { return field(x); };
+        else if (o.size > 0)
+          ro.size2 = [h = o.size](const point2&) { return h; };
+      }
+    }
     const refinement::mesher<D> again = [&](const conformer::boundary<D>& bb, const conformer::labelling& ll) {
       return mesh_segments<D>{}(bb, ll, o.threads);
     };

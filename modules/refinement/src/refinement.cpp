@@ -42,6 +42,7 @@ struct candidate {
   point<D> c;
   double r;
   std::uint32_t first, count;  // its encroached faces, in the chunk's face list
+  bool shape;                  // above the shape bound (else only too large for the size field)
 };
 
 /// Circumcentre and circumradius of a cell; false if it is flat in double precision.
@@ -113,7 +114,8 @@ class accepted_points {
 }  // namespace
 
 template <std::size_t D>
-plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double bound, unsigned threads) {
+plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double bound, unsigned threads,
+                   const std::function<double(const point<D>&)>& size) {
   plan<D> out;
   const auto& bp = b.points;
   std::vector<sizing::aabb<D>> boxes(b.faces.size());
@@ -145,12 +147,13 @@ plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double b
       point<D> at;
       double r;
       if (!circumball(p, c, at, r)) continue;
-      if (!(r > bound * std::sqrt(shortest))) continue;
-      if constexpr (D == 2) {
+      const bool bad_shape = r > bound * std::sqrt(shortest);
+      if (!bad_shape && !(size && 3 * r * r > size(at) * size(at))) continue;
+      if (D == 2 && bad_shape) {
         // Ungor's off-centre: on the shortest edge's bisector, no farther from it than the apex
         // of the triangle on that edge with the bound's angle (so that triangle is not bad), if
         // the circumcentre is farther (fewer points, and 2D converges up to 34 degrees)
-        const point2 m = 0.5 * (p[c[si]] + p[c[sj]]);
+        const point<D> m = 0.5 * (p[c[si]] + p[c[sj]]);
         const double half = 0.5 * std::sqrt(shortest), far = distance(m, at);
         const double reach = half * (2 * bound + std::sqrt(4 * bound * bound - 1));  // cot(theta/2) * half
         if (far > reach && far > 0) {
@@ -158,7 +161,7 @@ plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double b
           r = distance(at, p[c[si]]);
         }
       }
-      candidate<D> x{at, r, static_cast<std::uint32_t>(faces[k].size()), 0};
+      candidate<D> x{at, r, static_cast<std::uint32_t>(faces[k].size()), 0, bad_shape};
       // boundary faces whose closed ball holds the circumcentre (exact; a tie counts)
       tree.visit([&](const sizing::aabb<D>& box) { return box.contains(at); },
                  [&](std::uint32_t f) {
@@ -187,7 +190,8 @@ plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double b
       all.push_back({k, i});
       if (found[k][i].count == 0) levels.insert(accepted_points<D>::level(found[k][i].r));
     }
-  out.bad = all.size();
+  out.bad = static_cast<std::size_t>(std::count_if(all.begin(), all.end(), [&](const ref& x) { return found[x.chunk][x.index].shape; }));
+  out.large = all.size() - out.bad;
   auto at = [&](const ref& x) -> const candidate<D>& { return found[x.chunk][x.index]; };
   std::sort(all.begin(), all.end(), [&](const ref& x, const ref& y) {
     const auto &a = at(x), &c = at(y);
@@ -215,14 +219,19 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
                  const conformer::options& co, const options& o, const mesher<D>& mesh, stats& st) {
   const double bound = ratio_bound(D, o.bound);
   for (;;) {
-    auto pl = plan_round(d, b, bound, o.threads);
+    std::function<double(const point<D>&)> size;
+    if constexpr (D == 2)
+      size = o.size2;
+    else
+      size = o.size3;
+    auto pl = plan_round(d, b, bound, o.threads, size);
     st.bad_left = pl.bad;
     st.excepted = pl.excepted;
-    if (pl.bad == pl.excepted) {
+    if (pl.bad == pl.excepted && pl.large == 0) {
       st.converged = true;
       break;
     }
-    if (st.rounds >= o.max_rounds || d.points().size() >= o.max_points || (pl.add.empty() && pl.split.empty())) break;
+    if (st.rounds >= (o.max_rounds ? o.max_rounds : D == 2 ? 250 : 60) || d.points().size() >= o.max_points || (pl.add.empty() && pl.split.empty())) break;
     ++st.rounds;
     st.inserted += pl.add.size();
     st.split_requests += pl.split.size();
@@ -236,8 +245,10 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
   return d;
 }
 
-template plan<2> plan_round<2>(const domain<2>&, const conformer::boundary<2>&, double, unsigned);
-template plan<3> plan_round<3>(const domain<3>&, const conformer::boundary<3>&, double, unsigned);
+template plan<2> plan_round<2>(const domain<2>&, const conformer::boundary<2>&, double, unsigned,
+                               const std::function<double(const point2&)>&);
+template plan<3> plan_round<3>(const domain<3>&, const conformer::boundary<3>&, double, unsigned,
+                               const std::function<double(const point3&)>&);
 template domain<2> refine<2>(const plc<2>&, conformer::boundary<2>&, conformer::labelling&, domain<2>, const conformer::options&,
                              const options&, const mesher<2>&, stats&);
 template domain<3> refine<3>(const plc<3>&, conformer::boundary<3>&, conformer::labelling&, domain<3>, const conformer::options&,

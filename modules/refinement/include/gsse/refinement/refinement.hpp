@@ -29,14 +29,20 @@ struct options {
   // 3D: the radius-edge bound (circumradius / shortest edge), 2.0 by default, at least
   // min_ratio3; 2D: the smallest angle in degrees, 20.7 by default, at most max_angle2
   double bound = 0;
-  std::size_t max_rounds = 60;      // rounds before giving up (the elements left are reported)
+  // rounds before giving up (the elements left are reported); 0: 250 in 2D (cheap rounds; above
+  // 30 degrees the last fixes come a few per round), 60 in 3D
+  std::size_t max_rounds = 0;
   std::size_t max_points = 20'000'000;  // points in the mesh before giving up
+  // a size field: an element whose circumradius exceeds h(circumcentre) / sqrt 3 (the equilateral
+  // triangle of side h; 3D the same bound) is refined too, whatever its shape. Empty: shape only
+  std::function<double(const point2&)> size2;
+  std::function<double(const point3&)> size3;
   unsigned threads = 1;
   std::function<void(const std::string&)> progress;  // one line per round, may be empty
 };
 
 inline constexpr double default_ratio3 = 2.0, min_ratio3 = 1.0;
-inline constexpr double default_angle2 = 20.7, max_angle2 = 34.0;
+inline constexpr double default_angle2 = 20.7, max_angle2 = 33.0;
 
 /// The radius-edge bound an options::bound means in dimension D.
 double ratio_bound(std::size_t dimension, double bound);
@@ -56,10 +62,12 @@ struct plan {
   std::vector<point<D>> add;       // free points to insert
   std::vector<std::size_t> split;  // faces of b to split
   std::size_t bad = 0;             // elements above the bound
+  std::size_t large = 0;           // others too large for the size field (options::size2/3)
   std::size_t excepted = 0;        // of those, excepted (small input angle)
 };
 template <std::size_t D>
-plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double ratio_bound, unsigned threads);
+plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double ratio_bound, unsigned threads,
+                   const std::function<double(const point<D>&)>& size = {});
 
 /// Meshes the segments of a labelled boundary (the pipeline's mesh_segments).
 template <std::size_t D>
