@@ -86,7 +86,7 @@ def main():
             pts, cells, seg = mesh(poly2, args, work, "m2")
             draw(ax, [[pts[v] for v in c] for c in cells], seg, "gsse-mesh mosfet2d.poly " + title, f"{len(cells):,} triangles")
         fig.tight_layout()
-        fig.savefig(os.path.join(OUT, "mosfet2d_sizing.png"), dpi=130)
+        fig.savefig(os.path.join(OUT, "mosfet2d_sizing.png"), dpi=130, bbox_inches="tight")
         plt.close(fig)
 
         poly3 = os.path.join(ROOT, "examples", "mosfet.poly")
@@ -98,7 +98,7 @@ def main():
             polys, col = cut(pts, cells, seg, 1, at)
             draw(ax, polys, col, f"gsse-mesh mosfet.poly {title}: cut y = {at:.3f}", f"{len(cells):,} tetrahedra")
         fig.tight_layout()
-        fig.savefig(os.path.join(OUT, "mosfet3d_cut.png"), dpi=130)
+        fig.savefig(os.path.join(OUT, "mosfet3d_cut.png"), dpi=130, bbox_inches="tight")
         plt.close(fig)
     print("wrote", os.path.join(OUT, "mosfet2d_sizing.png"), "and", os.path.join(OUT, "mosfet3d_cut.png"))
 
