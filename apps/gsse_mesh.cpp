@@ -29,7 +29,7 @@ void usage(std::FILE* to) {
       "usage: gsse-mesh INPUT [-o OUTPUT] [--size H] [--cloud POINTS.node] [--threads N] [--verify]\n"
       "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
       "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly] [--msh 4.1|2.2] [--verify-tol R]\n"
-      "                 [--grade G] [--no-feature-size] [--quality [B]]\n"
+      "                 [--grade G] [--no-feature-size] [--quality [B]] [--sliver-angle A]\n"
       "       gsse-mesh INPUT --check MESH [--threads N] [--quiet] [--verify-tol R]\n"
       "  INPUT    TetGen .poly/.smesh (3D), Triangle .poly (2D), or a closed surface: OFF, STL,\n"
       "           Gmsh .msh surface mesh (its volumes become segments)\n"
@@ -46,6 +46,8 @@ void usage(std::FILE* to) {
       "  --quality [B]  Delaunay refinement (modules/refinement/README.md): 3D, no tetrahedron with a\n"
       "           radius-edge ratio above B (default 2.0, at least 1); 2D, no triangle with an angle\n"
       "           below B degrees (default 20.7, at most 33); the mesh stays conforming Delaunay\n"
+      "  --sliver-angle A  with --quality in 3D: tetrahedra with a dihedral angle below A or above\n"
+      "           180 - 2A degrees are refined too (default 5: none below 5 or above 170; 0: off)\n"
       "  --cloud  extra interior points (.node); points outside every segment are dropped\n"
       "  --verify check the mesh against the input (valid, conforming, labelled, Delaunay); if it\n"
       "           fails: exit status 3, no output written (neither -o nor --stats)\n"
@@ -70,6 +72,7 @@ struct args {
   std::string input, output, cloud, stats, rules, fill, plc_out, check;
   double size = 0, verify_tol = gsse::verify::options{}.facet_tolerance, grade = 0, quality_bound = 0;
   bool quality = false;
+  double sliver_angle = gsse::refinement::options{}.sliver_angle;
   bool no_feature = false;
   unsigned threads = 1;
   bool verify = false, verify_tol_given = false, quiet = false, no_merge = false, msh22 = false;
@@ -113,6 +116,7 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.verify = a.verify;
   o.quality = a.quality;
   o.quality_bound = a.quality_bound;
+  o.sliver_angle = a.sliver_angle;
   if (a.quality) gsse::refinement::ratio_bound(D, a.quality_bound);  // a bound out of range is a usage error
   o.verify_tolerance = a.verify_tol;
   o.conform.max_steiner = a.max_steiner;
@@ -174,6 +178,9 @@ int run(const gsse::plc<D>& p, const args& a) {
       throw std::runtime_error(out + ": unknown output format (use .vtu, .msh or .node)");
     r.times.push_back({"write", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});
   }
+  if (r.quality && !r.refinement.failure.empty())
+    std::fprintf(stderr, "gsse-mesh: warning: quality refinement stopped by a failed %s; the mesh is the round before, %zu elements above the bound\n",
+                 r.refinement.failure.c_str(), r.refinement.bad_left);
   const auto q = (!a.quiet || !a.stats.empty()) ? gsse::pipeline::measure(d) : gsse::pipeline::quality{};
   if (!a.quiet) {
     std::printf("%s: %zuD, %zu points (%zu volume, %zu dropped outside, %zu boundary Steiner), %zu segments\n",
@@ -213,6 +220,7 @@ int run(const gsse::plc<D>& p, const args& a) {
       std::printf("  refinement: %s after %zu rounds, %zu circumcentres inserted, %zu boundary faces split;\n"
                   "           %zu elements left above the bound\n",
                   st.converged ? "converged" : "stopped", st.rounds, st.inserted, st.split_requests, st.bad_left);
+      if (!st.failure.empty()) std::printf("           stopped by a failed %s (the mesh is the round before)\n", st.failure.c_str());
     }
     for (const auto& t : r.times) std::printf("  %-8s %8.3f s\n", t.stage.c_str(), t.seconds);
   }
@@ -240,7 +248,8 @@ int run(const gsse::plc<D>& p, const args& a) {
       js << ", \"refinement\": {\"bound\": " << gsse::refinement::ratio_bound(D, a.quality_bound) << ", \"converged\": "
          << (r.refinement.converged ? "true" : "false") << ", \"rounds\": " << r.refinement.rounds
          << ", \"inserted\": " << r.refinement.inserted << ", \"boundary_splits\": " << r.refinement.split_requests
-         << ", \"above_bound\": " << r.refinement.bad_left << ", \"excepted\": " << r.refinement.excepted << "}";
+         << ", \"above_bound\": " << r.refinement.bad_left << ", \"excepted\": " << r.refinement.excepted
+         << ", \"sliver_angle\": " << (D == 3 ? a.sliver_angle : 0.0) << ", \"failed\": " << (r.refinement.failure.empty() ? "false" : "true") << "}";
     js << "}";
     js << ", \"verified\": " << (a.verify ? "true" : "null") << "}\n";
   }
@@ -314,6 +323,9 @@ int main(int argc, char** argv) {
             ++i;
           }
         }
+      } else if (s == "--sliver-angle") {
+        a.sliver_angle = std::stod(value());
+        if (!(a.sliver_angle >= 0 && a.sliver_angle < 30)) throw std::invalid_argument("--sliver-angle must be in [0, 30)");
       } else if (s == "--no-feature-size") {
         a.no_feature = true;
       } else if (s == "--verify") {

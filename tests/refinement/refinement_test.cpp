@@ -52,8 +52,9 @@ domain<D> refined(const plc<D>& p, double bound, unsigned threads, pl::report& r
 
 }  // namespace
 
-// --quality 1.414 in 3D: no tetrahedron above the bound, the mesh verified (valid, conforming,
-// labelled, Delaunay against the input), on the axis-aligned and the rotated stack.
+// --quality 1.414 in 3D: no tetrahedron above the bound and no sliver (dihedral angles within
+// [5, 170] degrees), the mesh verified (valid, conforming, labelled, Delaunay against the input),
+// on the axis-aligned and the rotated stack.
 BOOST_AUTO_TEST_CASE(radius_edge_bound_3d) {
   for (bool rotated : {false, true}) {
     pl::report r;
@@ -63,6 +64,11 @@ BOOST_AUTO_TEST_CASE(radius_edge_bound_3d) {
     BOOST_TEST(r.refinement.bad_left == 0u);
     BOOST_TEST(r.refinement.rounds > 0u);
     BOOST_TEST(q.max_ratio <= 1.414 * (1 + 1e-9), (rotated ? "rotated: " : "") << "max radius-edge " << q.max_ratio);
+    // and no sliver (the default sliver angle, 5): every dihedral angle in [5, 170] degrees
+    BOOST_TEST(q.below5 == 0u, (rotated ? "rotated: " : "") << q.below5 << " elements below 5 degrees");
+    BOOST_TEST(q.above170 == 0u);
+    BOOST_TEST(q.min_angle >= 5.0);
+    BOOST_TEST(q.max_angle <= 170.0);
   }
 }
 
@@ -158,6 +164,8 @@ BOOST_AUTO_TEST_CASE(bench_structures_refined) {
     pl::report r;
     const auto d = refined(p, 1.414, 2, r);
     BOOST_TEST(r.refinement.converged);
-    BOOST_TEST(pl::measure(d).max_ratio <= 1.414 * (1 + 1e-9));
+    const auto q = pl::measure(d);
+    BOOST_TEST(q.max_ratio <= 1.414 * (1 + 1e-9));
+    BOOST_TEST(q.below5 + q.above170 == 0u);
   }
 }

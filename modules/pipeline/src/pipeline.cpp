@@ -559,6 +559,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     lap("mesh");
     refinement::options ro;
     ro.bound = o.quality_bound;
+    ro.sliver_angle = o.sliver_angle;
     ro.threads = o.threads;
     ro.progress = o.progress;
     if (refined_interior) {

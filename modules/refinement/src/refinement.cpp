@@ -113,9 +113,26 @@ class accepted_points {
 
 }  // namespace
 
+/// Smallest and largest dihedral angle of a tetrahedron, degrees.
+std::pair<double, double> dihedral_range(const std::vector<point3>& p, const std::array<vertex_id, 4>& c) {
+  double lo = 180, hi = 0;
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t j = i + 1; j < 4; ++j) {
+      std::size_t k = 0;
+      while (k == i || k == j) ++k;
+      const std::size_t l = 6 - i - j - k;
+      const point3 e = p[c[j]] - p[c[i]];
+      const point3 n1 = cross(e, p[c[k]] - p[c[i]]), n2 = cross(e, p[c[l]] - p[c[i]]);
+      const double cosv = dot(n1, n2) / std::sqrt(dot(n1, n1) * dot(n2, n2));
+      const double a = std::acos(std::clamp(cosv, -1.0, 1.0)) * 180 / std::numbers::pi;
+      lo = std::min(lo, a), hi = std::max(hi, a);
+    }
+  return {lo, hi};
+}
+
 template <std::size_t D>
 plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double bound, unsigned threads,
-                   const std::function<double(const point<D>&)>& size) {
+                   const std::function<double(const point<D>&)>& size, double sliver, const conformer::labelling* l) {
   plan<D> out;
   const auto& bp = b.points;
   std::vector<sizing::aabb<D>> boxes(b.faces.size());
@@ -147,7 +164,13 @@ plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double b
       point<D> at;
       double r;
       if (!circumball(p, c, at, r)) continue;
-      const bool bad_shape = r > bound * std::sqrt(shortest);
+      bool bad_shape = r > bound * std::sqrt(shortest);
+      if constexpr (D == 3) {
+        if (!bad_shape && sliver > 0) {
+          const auto [lo, hi] = dihedral_range(p, c);
+          bad_shape = lo < sliver || hi > 180 - 2 * sliver;
+        }
+      }
       if (!bad_shape && !(size && 3 * r * r > size(at) * size(at))) continue;
       if (D == 2 && bad_shape) {
         // Ungor's off-centre: on the shortest edge's bisector, no farther from it than the apex
@@ -210,6 +233,17 @@ plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double b
     taken.add(c.c);
   }
   out.add = std::move(taken.points());
+  // a circumcentre outside every segment that encroaches no subfacet (it may lie in a subsegment's
+  // ball only, or outside by rounding) is not inserted: the conformer would project a point from
+  // the outside, which it never sees otherwise. Its element stays for a later round
+  if (l && !out.add.empty()) {
+    const auto where = conformer::locate(b, *l, out.add);
+    std::vector<point<D>> inside;
+    for (std::size_t k = 0; k < out.add.size(); ++k)
+      if (where[k] != conformer::exterior) inside.push_back(out.add[k]);
+    out.outside = out.add.size() - inside.size();
+    out.add = std::move(inside);
+  }
   out.split.assign(split.begin(), split.end());
   return out;
 }
@@ -224,7 +258,8 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       size = o.size2;
     else
       size = o.size3;
-    auto pl = plan_round(d, b, bound, o.threads, size);
+    auto pl = plan_round(d, b, bound, o.threads, size, D == 3 ? o.sliver_angle : 0.0, &l);
+    st.outside += pl.outside;
     st.bad_left = pl.bad;
     st.excepted = pl.excepted;
     if (pl.bad == pl.excepted && pl.large == 0) {
@@ -238,17 +273,28 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     if (o.progress)
       o.progress("quality round " + std::to_string(st.rounds) + ": " + std::to_string(pl.bad) + " elements above the bound, " +
                  std::to_string(pl.add.size()) + " circumcentres, " + std::to_string(pl.split.size()) + " boundary splits");
-    b = conformer::resume(p, b, pl.add, pl.split, co);
-    l = conformer::label(b, p, o.threads);
-    d = mesh(b, l);
+    // a round that fails (an error from the conformer, the labelling or the mesher) leaves the
+    // last good mesh, its boundary and labels as they were; the failure is reported, not hidden
+    try {
+      auto b2 = conformer::resume(p, b, pl.add, pl.split, co);
+      auto l2 = conformer::label(b2, p, o.threads);
+      auto d2 = mesh(b2, l2);
+      b = std::move(b2), l = std::move(l2), d = std::move(d2);
+    } catch (const std::exception& e) {
+      st.failure = "round " + std::to_string(st.rounds) + ": " + e.what();
+      --st.rounds;
+      st.inserted -= pl.add.size();
+      st.split_requests -= pl.split.size();
+      break;
+    }
   }
   return d;
 }
 
 template plan<2> plan_round<2>(const domain<2>&, const conformer::boundary<2>&, double, unsigned,
-                               const std::function<double(const point2&)>&);
+                               const std::function<double(const point2&)>&, double, const conformer::labelling*);
 template plan<3> plan_round<3>(const domain<3>&, const conformer::boundary<3>&, double, unsigned,
-                               const std::function<double(const point3&)>&);
+                               const std::function<double(const point3&)>&, double, const conformer::labelling*);
 template domain<2> refine<2>(const plc<2>&, conformer::boundary<2>&, conformer::labelling&, domain<2>, const conformer::options&,
                              const options&, const mesher<2>&, stats&);
 template domain<3> refine<3>(const plc<3>&, conformer::boundary<3>&, conformer::labelling&, domain<3>, const conformer::options&,

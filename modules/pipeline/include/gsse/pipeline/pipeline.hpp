@@ -41,6 +41,7 @@ struct options {
   // in degrees; 0: the default (2.0, 20.7 degrees)
   bool quality = false;
   double quality_bound = 0;
+  double sliver_angle = refinement::options{}.sliver_angle;  // 3D, with quality: see refinement::options
   unsigned threads = 1;  // threads shared by the stages (0: every hardware thread, execution::thread_count)
   bool verify = false;   // run the library verifier (gsse::verify::check against the input PLC) at the end
   double verify_tolerance = verify::options{}.facet_tolerance;  // the verifier's facet tolerance

@@ -33,6 +33,10 @@ struct options {
   // 30 degrees the last fixes come a few per round), 60 in 3D
   std::size_t max_rounds = 0;
   std::size_t max_points = 20'000'000;  // points in the mesh before giving up
+  // 3D slivers: a tetrahedron with a dihedral angle below sliver_angle or above 180 - 2 x
+  // sliver_angle (5: below 5 or above 170 degrees) is refined like a bad one, by its circumcentre
+  // (0: radius-edge only). Not in the theory's guarantee; converges on the benchmark structures
+  double sliver_angle = 5;
   // a size field: an element whose circumradius exceeds h(circumcentre) / sqrt 3 (the equilateral
   // triangle of side h; 3D the same bound) is refined too, whatever its shape. Empty: shape only
   std::function<double(const point2&)> size2;
@@ -53,7 +57,11 @@ struct stats {
   std::size_t split_requests = 0;  // boundary faces split because a circumcentre encroached them
   std::size_t bad_left = 0;        // elements above the bound at the end (0 when it converged)
   std::size_t excepted = 0;        // of those, at a small input angle (see README)
+  std::size_t outside = 0;         // circumcentres left out because they lie outside every segment
   bool converged = false;
+  // not empty: a round failed (its error); the mesh is the last good round's. Seen on the rotated
+  // MOSFET and FinFET: after round 2 the labelling finds a region point outside the domain
+  std::string failure;
 };
 
 /// What one round decides from a conforming Delaunay mesh `d` of boundary `b`.
@@ -61,13 +69,15 @@ template <std::size_t D>
 struct plan {
   std::vector<point<D>> add;       // free points to insert
   std::vector<std::size_t> split;  // faces of b to split
-  std::size_t bad = 0;             // elements above the bound
+  std::size_t bad = 0;             // elements above the bound (or slivers, options::sliver_angle)
   std::size_t large = 0;           // others too large for the size field (options::size2/3)
+  std::size_t outside = 0;         // circumcentres outside every segment, not inserted (labels given)
   std::size_t excepted = 0;        // of those, excepted (small input angle)
 };
 template <std::size_t D>
 plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double ratio_bound, unsigned threads,
-                   const std::function<double(const point<D>&)>& size = {});
+                   const std::function<double(const point<D>&)>& size = {}, double sliver_angle = 0,
+                   const conformer::labelling* labels = nullptr);
 
 /// Meshes the segments of a labelled boundary (the pipeline's mesh_segments).
 template <std::size_t D>
