@@ -175,7 +175,7 @@ plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double b
       if (D == 2 && bad_shape) {
         // Ungor's off-centre: on the shortest edge's bisector, no farther from it than the apex
         // of the triangle on that edge with the bound's angle (so that triangle is not bad), if
-        // the circumcentre is farther (fewer points, and 2D converges up to 34 degrees)
+        // the circumcentre is farther (fewer points)
         const point<D> m = 0.5 * (p[c[si]] + p[c[sj]]);
         const double half = 0.5 * std::sqrt(shortest), far = distance(m, at);
         const double reach = half * (2 * bound + std::sqrt(4 * bound * bound - 1));  // cot(theta/2) * half
