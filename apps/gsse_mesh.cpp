@@ -249,7 +249,9 @@ int run(const gsse::plc<D>& p, const args& a) {
          << (r.refinement.converged ? "true" : "false") << ", \"rounds\": " << r.refinement.rounds
          << ", \"inserted\": " << r.refinement.inserted << ", \"boundary_splits\": " << r.refinement.split_requests
          << ", \"above_bound\": " << r.refinement.bad_left << ", \"excepted\": " << r.refinement.excepted
-         << ", \"sliver_angle\": " << (D == 3 ? a.sliver_angle : 0.0) << ", \"failed\": " << (r.refinement.failure.empty() ? "false" : "true") << "}";
+         << ", \"sliver_angle\": " << (D == 3 ? a.sliver_angle : 0.0) << ", \"failed\": " << (r.refinement.failure.empty() ? "false" : "true")
+         << ", \"seconds\": {\"plan\": " << r.refinement.plan_seconds << ", \"conform\": " << r.refinement.conform_seconds
+         << ", \"label\": " << r.refinement.label_seconds << ", \"mesh\": " << r.refinement.mesh_seconds << "}}";
     js << "}";
     js << ", \"verified\": " << (a.verify ? "true" : "null") << "}\n";
   }

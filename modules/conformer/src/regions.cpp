@@ -11,6 +11,7 @@
 #include "gsse/container/union_find.hpp"
 #include "gsse/geometry/predicates.hpp"
 #include "gsse/geometry/ray_tilts.hpp"
+#include "gsse/sizing/box_tree.hpp"
 #include "gsse/traversal/for_each.hpp"
 #include "gsse/traversal/parallel_sort.hpp"
 
@@ -33,14 +34,16 @@ double diameter(const std::vector<point<D>>& p) {
 /// on a face plane inside a face.
 template <std::size_t D>
 std::pair<long, int> cast(const boundary<D>& b, const point<D>& o, const point<D>& dir, long skip, bool& degenerate,
-                          bool& on_face, vertex_id skip_vertex = no_vertex) {
+                          bool& on_face, vertex_id skip_vertex = no_vertex, const std::vector<std::uint32_t>* only = nullptr) {
   const auto& p = b.points;
   const point<D> far = o + dir;
   long best = -1;
   int best_side = 0;
   double best_t = std::numeric_limits<double>::infinity();
   degenerate = on_face = false;
-  for (std::size_t f = 0; f < b.faces.size(); ++f) {
+  const std::size_t count = only ? only->size() : b.faces.size();
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t f = only ? (*only)[i] : i;
     if (static_cast<long>(f) == skip) continue;
     const auto& F = b.faces[f];
     if (skip_vertex != no_vertex && std::find(F.begin(), F.end(), skip_vertex) != F.end()) continue;
@@ -407,17 +410,62 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
   return out;
 }
 
+/// Does the segment o -> o + d meet the box (padded)? Doubles, a filter only: the faces it keeps
+/// are decided by cast()'s exact predicates, in ascending order as if every face were tried.
+template <std::size_t D>
+bool segment_meets(const sizing::aabb<D>& box, const point<D>& o, const point<D>& d) {
+  double t0 = 0, t1 = 1;
+  for (std::size_t k = 0; k < D; ++k) {
+    const double pad = 1e-9 * (box.hi[k] - box.lo[k]) + 1e-12 * (std::abs(box.lo[k]) + std::abs(box.hi[k])) + 1e-300;
+    const double lo = box.lo[k] - pad, hi = box.hi[k] + pad;
+    if (d[k] == 0) {
+      if (o[k] < lo || o[k] > hi) return false;
+      continue;
+    }
+    double a = (lo - o[k]) / d[k], c = (hi - o[k]) / d[k];
+    if (a > c) std::swap(a, c);
+    t0 = std::max(t0, a - 1e-9), t1 = std::min(t1, c + 1e-9);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
 template <std::size_t D>
 std::vector<int> locate_impl(const boundary<D>& b, const labelling& l, const std::vector<point<D>>& q) {
   std::vector<int> r(q.size(), exterior);
+  if (q.empty()) return r;
   const double len = 4 * diameter(b.points);
+  // the faces in a bounding-volume hierarchy: a ray visits the faces whose boxes it meets
+  std::vector<sizing::aabb<D>> boxes(b.faces.size());
+  for (std::size_t f = 0; f < b.faces.size(); ++f) {
+    boxes[f] = sizing::aabb<D>::empty();
+    for (auto v : b.faces[f]) boxes[f].add(b.points[v]);
+  }
+  const sizing::box_tree<D> tree(std::move(boxes), std::vector<double>(b.faces.size(), 0.0));
+  std::vector<std::uint32_t> near;
   for (std::size_t i = 0; i < q.size(); ++i) {
-    long hit;
-    try {
-      hit = first_side(b, q[i], point<D>{}, -1, len, "point");
-    } catch (const conform_error&) {
-      continue;  // on the boundary: not a volume point
+    long hit = -1;
+    bool found = false, on_boundary = false;
+    for (std::size_t k = 0; k < ray_tilts.size() && !found; ++k) {
+      const point<D> dir = tilt_dir(point<D>{}, k, len);
+      near.clear();
+      tree.visit([&](const sizing::aabb<D>& box) { return segment_meets(box, q[i], dir); },
+                 [&](std::uint32_t f) {
+                   near.push_back(f);
+                   return true;
+                 });
+      std::sort(near.begin(), near.end());
+      bool degenerate, on_face;
+      const auto [f, s] = cast(b, q[i], dir, -1, degenerate, on_face, no_vertex, &near);
+      if (on_face) {
+        on_boundary = true;  // on the boundary: not a volume point
+        break;
+      }
+      if (degenerate) continue;
+      found = true;
+      hit = f < 0 ? -1 : 2 * f + s;
     }
+    if (on_boundary || !found) continue;
     if (hit >= 0) r[i] = l.side[static_cast<std::size_t>(hit) / 2][static_cast<std::size_t>(hit) % 2];
   }
   return r;

@@ -1,6 +1,7 @@
 #include "gsse/refinement/refinement.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -258,7 +259,15 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       size = o.size2;
     else
       size = o.size3;
+    auto clock = std::chrono::steady_clock::now();
+    auto lap = [&clock]() {
+      const auto now = std::chrono::steady_clock::now();
+      const double s = std::chrono::duration<double>(now - clock).count();
+      clock = now;
+      return s;
+    };
     auto pl = plan_round(d, b, bound, o.threads, size, D == 3 ? o.sliver_angle : 0.0, &l);
+    st.plan_seconds += lap();
     st.outside += pl.outside;
     st.bad_left = pl.bad;
     st.excepted = pl.excepted;
@@ -277,8 +286,11 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     // last good mesh, its boundary and labels as they were; the failure is reported, not hidden
     try {
       auto b2 = conformer::resume(p, b, pl.add, pl.split, co);
+      st.conform_seconds += lap();
       auto l2 = conformer::label(b2, p, o.threads);
+      st.label_seconds += lap();
       auto d2 = mesh(b2, l2);
+      st.mesh_seconds += lap();
       b = std::move(b2), l = std::move(l2), d = std::move(d2);
     } catch (const std::exception& e) {
       st.failure = "round " + std::to_string(st.rounds) + ": " + e.what();

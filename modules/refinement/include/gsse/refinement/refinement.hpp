@@ -59,6 +59,8 @@ struct stats {
   std::size_t excepted = 0;        // of those, at a small input angle (see README)
   std::size_t outside = 0;         // circumcentres left out because they lie outside every segment
   bool converged = false;
+  // wall seconds spent in each step, summed over the rounds
+  double plan_seconds = 0, conform_seconds = 0, label_seconds = 0, mesh_seconds = 0;
   // not empty: a round failed (its error); the mesh is the last good round's. Seen on the rotated
   // MOSFET and FinFET: after round 2 the labelling finds a region point outside the domain
   std::string failure;
