@@ -157,6 +157,8 @@ int run(const gsse::plc<D>& p, const args& a) {
   if (a.fill == "rules") o.interior = gsse::pipeline::fill::rules;
   if (o.interior == gsse::pipeline::fill::rules && !(a.size > 0))
     throw std::runtime_error("--fill rules needs --size (the rules work in units of the target size)");
+  if (o.interior == gsse::pipeline::fill::rules && a.quality)
+    throw std::runtime_error("--quality does not combine with --fill rules (the refinement places the interior points itself)");
   if (o.interior == gsse::pipeline::fill::rules && o.graded)
     throw std::runtime_error("--fill rules works with a uniform --size only, not with graded sizing (--grade, sidecar sizes, region volumes)");
   if (tty) o.progress = [](const std::string& s) { std::fprintf(stderr, "\r\033[Kgsse-mesh: %s", s.c_str()); };
@@ -251,7 +253,9 @@ int run(const gsse::plc<D>& p, const args& a) {
          << ", \"above_bound\": " << r.refinement.bad_left << ", \"excepted\": " << r.refinement.excepted
          << ", \"sliver_angle\": " << (D == 3 ? a.sliver_angle : 0.0) << ", \"failed\": " << (r.refinement.failure.empty() ? "false" : "true")
          << ", \"seconds\": {\"plan\": " << r.refinement.plan_seconds << ", \"conform\": " << r.refinement.conform_seconds
-         << ", \"label\": " << r.refinement.label_seconds << ", \"mesh\": " << r.refinement.mesh_seconds << "}}";
+         << ", \"label\": " << r.refinement.label_seconds << ", \"mesh\": " << r.refinement.mesh_seconds << "}"
+         << ", \"cavity_cells\": " << r.refinement.cavity_cells << ", \"cavity_made\": " << r.refinement.cavity_made
+         << ", \"full_remeshes\": " << r.refinement.full_remeshes << "}";
     js << "}";
     js << ", \"verified\": " << (a.verify ? "true" : "null") << "}\n";
   }

@@ -145,6 +145,49 @@ BOOST_AUTO_TEST_CASE(resume_only_refines_the_boundary) {
   }
 }
 
+namespace {
+
+/// Every region's cells as a sorted list of sorted vertex tuples.
+template <std::size_t D>
+std::vector<std::vector<std::array<vertex_id, D + 1>>> canonical(refinement::cells_by_region<D> cells) {
+  for (auto& region : cells) {
+    for (auto& c : region) std::sort(c.begin(), c.end());
+    std::sort(region.begin(), region.end());
+  }
+  return cells;
+}
+
+/// Meshes p, resumes its boundary with `added` points and the faces `split` split, and checks
+/// that re-meshing only the cavities gives exactly the cells a meshing from scratch gives.
+template <std::size_t D>
+void cavities_match(const plc<D>& p, double size, const std::vector<point<D>>& added, std::vector<std::size_t> split) {
+  conformer::options co;
+  co.size = size;
+  const auto b = conformer::conform(p, {}, co);
+  const auto l = conformer::label(b, p, 1);
+  auto cells = pl::mesh_segments<D>::wrap(b, l, 1);
+  for (auto& f : split) f = f * b.faces.size() / 1000;
+  const auto c = conformer::resume(p, b, added, split, co);
+  const auto lc = conformer::label(c, p, 1);
+  std::size_t removed = 0, made = 0, before = 0;
+  for (const auto& r : cells) before += r.size();
+  BOOST_REQUIRE(refinement::remesh_cavities(b, c, l, lc, cells, 2, &removed, &made));
+  BOOST_TEST(removed > 0u);
+  BOOST_TEST(removed < before / 2, p.source << ": " << removed << " of " << before << " cells re-meshed");
+  const auto full = pl::mesh_segments<D>::wrap(c, lc, 1);
+  BOOST_TEST((canonical<D>(cells) == canonical<D>(full)), p.source << ": the cavities' cells differ from a full meshing");
+}
+
+}  // namespace
+
+// Re-meshing only the cavities of a round's new points (refinement::remesh_cavities) makes the
+// mesh that meshing every segment again makes, cell for cell, in 3D (the rotated stack) and 2D.
+BOOST_AUTO_TEST_CASE(cavities_match_a_full_meshing) {
+  cavities_match<3>(stack(1, {0, 0.5, 1}, true), 0.15,
+                    {turn(point3{0.5, 0.5, 0.25}), turn(point3{0.21, 0.73, 0.77}), turn(point3{0.8, 0.3, 0.6})}, {0, 500});
+  cavities_match<2>(device2d(), 0.15, {point2{1.03, 0.41}, point2{3.1, 0.57}, point2{2.02, 1.31}}, {0, 400, 800});
+}
+
 // The benchmark structures (../shared): 2D MOSFET at 33 degrees, 3D diffusion at 1.414.
 BOOST_AUTO_TEST_CASE(bench_structures_refined) {
   const auto shared = gsse::test::shared_dir();

@@ -409,13 +409,46 @@ std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, const sizing::
 }
 
 template <std::size_t D>
+domain<D> assemble_pieces(const std::vector<point<D>>& pts, const conformer::labelling& l, const pieces_t<D>& cells,
+                          unsigned threads);
+
+template <std::size_t D>
 domain<D> mesh_segments<D>::operator()(const conformer::boundary<D>& b, const conformer::labelling& l,
                                        unsigned threads) const {
   std::vector<point<D>> extended;
   front::creation_stats st;
   const auto cells = create ? wrap_all_creating(extended, b, l, threads, *create, st) : wrap_pieces(b.points, b, l, threads);
   if (create && created) *created = st;
-  const auto& pts = create ? extended : b.points;
+  return assemble_pieces(create ? extended : b.points, l, cells, threads);
+}
+
+template <std::size_t D>
+std::vector<std::vector<cell_t<D>>> mesh_segments<D>::wrap(const conformer::boundary<D>& b, const conformer::labelling& l,
+                                                           unsigned threads) {
+  auto pieces = wrap_pieces(b.points, b, l, threads);
+  std::vector<std::vector<cell_t<D>>> out(pieces.size());
+  for (std::size_t r = 0; r < pieces.size(); ++r) {
+    std::size_t n = 0;
+    for (const auto& pc : pieces[r]) n += pc.size();
+    out[r].reserve(n);
+    for (const auto& pc : pieces[r]) out[r].insert(out[r].end(), pc.begin(), pc.end());
+  }
+  return out;
+}
+
+template <std::size_t D>
+domain<D> mesh_segments<D>::assemble(const std::vector<point<D>>& pts, const conformer::labelling& l,
+                                     std::vector<std::vector<cell_t<D>>> cells, unsigned threads) {
+  pieces_t<D> pieces(cells.size());
+  for (std::size_t r = 0; r < cells.size(); ++r) pieces[r].push_back(std::move(cells[r]));
+  return assemble_pieces(pts, l, pieces, threads);
+}
+
+/// The domain of the cells (region -> pieces) on points `pts`: segments in number order, the
+/// points used in their order.
+template <std::size_t D>
+domain<D> assemble_pieces(const std::vector<point<D>>& pts, const conformer::labelling& l, const pieces_t<D>& cells,
+                          unsigned threads) {
   // every piece of every region is a task: mark the points used, then copy the cells renumbered
   struct task {
     std::size_t region, piece, offset;  // offset: of the piece's cells in its segment
@@ -552,10 +585,15 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     fo.h = o.size;
     fo.too_far = o.too_far;
   }
-  auto d = mesh_segments<D>{creating ? &fo : nullptr, &r.creation}(b, l, o.threads);
-  if (o.quality) {
+  domain<D> d;
+  if (!o.quality) {
+    d = mesh_segments<D>{creating ? &fo : nullptr, &r.creation}(b, l, o.threads);
+  } else {
     // Delaunay refinement (modules/refinement): rounds of circumcentres and boundary splits, the
-    // boundary resumed and the segments meshed again each round
+    // boundary resumed and only the cavities of the new points meshed again each round
+    if (creating)
+      throw std::invalid_argument("--quality does not combine with --fill rules: the refinement places the interior points itself");
+    auto cells = mesh_segments<D>::wrap(b, l, o.threads);
     lap("mesh");
     refinement::options ro;
     ro.bound = o.quality_bound;
@@ -570,10 +608,12 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
           ro.size2 = [h = o.size](const point2&) { return h; };
       }
     }
-    const refinement::mesher<D> again = [&](const conformer::boundary<D>& bb, const conformer::labelling& ll) {
-      return mesh_segments<D>{}(bb, ll, o.threads);
+    refinement::meshers<D> m;
+    m.wrap = [&](const conformer::boundary<D>& bb, const conformer::labelling& ll) { return mesh_segments<D>::wrap(bb, ll, o.threads); };
+    m.assemble = [&](const conformer::boundary<D>& bb, const conformer::labelling& ll, refinement::cells_by_region<D> cc) {
+      return mesh_segments<D>::assemble(bb.points, ll, std::move(cc), o.threads);
     };
-    d = refinement::refine(p, b, l, std::move(d), co, ro, again, r.refinement);
+    d = refinement::refine(p, b, l, std::move(cells), co, ro, m, r.refinement);
     r.quality = true;
     r.steiner = b.steiner;
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <numeric>
@@ -10,8 +11,13 @@
 #include <span>
 #include <stdexcept>
 #include <tuple>
+#include <unordered_map>
+#include <unordered_set>
 
+#include "gsse/container/union_find.hpp"
+#include "gsse/front/front_mesher.hpp"
 #include "gsse/geometry/circumcentre.hpp"
+#include "gsse/geometry/exact_ball.hpp"
 #include "gsse/geometry/hash_grid.hpp"
 #include "gsse/geometry/predicates.hpp"
 #include "gsse/sizing/box_tree.hpp"
@@ -46,21 +52,33 @@ struct candidate {
   bool shape;                  // above the shape bound (else only too large for the size field)
 };
 
-/// Circumcentre and circumradius of a cell; false if it is flat in double precision.
+/// Circumcentre and circumradius of a cell, within a relative 1e-8 of the longest edge: the
+/// double construction when the cell is far from flat, else the exact one rounded outwards (a
+/// nearly flat sliver's double centre can be anywhere). False only for an exactly flat cell.
 template <std::size_t D>
 bool circumball(const std::vector<point<D>>& p, const cell_t<D>& c, point<D>& at, double& r) {
+  double longest = 0;
+  for (std::size_t i = 0; i <= D; ++i)
+    for (std::size_t j = i + 1; j <= D; ++j) longest = std::max(longest, squared_distance(p[c[i]], p[c[j]]));
+  double det;
   if constexpr (D == 2) {
-    double det;
     const point2 off = geometry::plane_circumcentre_offset(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]], det);
-    if (det == 0) return false;
-    at = p[c[0]] + off;
-    r = std::sqrt(dot(off, off));
+    if (std::abs(det) > 1e-6 * longest) {
+      at = p[c[0]] + off;
+      r = std::sqrt(dot(off, off));
+      return std::isfinite(r);
+    }
+    if (geometry::orient2d(p[c[0]], p[c[1]], p[c[2]]) == 0) return false;
+    geometry::exact_circumball(p[c[0]], p[c[1]], p[c[2]], at, r);
   } else {
-    double det;
     const point3 off = geometry::tetrahedron_circumcentre_offset(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]], p[c[3]] - p[c[0]], det);
-    if (det == 0) return false;
-    at = p[c[0]] + off;
-    r = std::sqrt(dot(off, off));
+    if (std::abs(det) > 1e-6 * longest * std::sqrt(longest)) {
+      at = p[c[0]] + off;
+      r = std::sqrt(dot(off, off));
+      return std::isfinite(r);
+    }
+    if (geometry::orient3d(p[c[0]], p[c[1]], p[c[2]], p[c[3]]) == 0) return false;
+    geometry::exact_circumball(p[c[0]], p[c[1]], p[c[2]], p[c[3]], at, r);
   }
   return std::isfinite(r);
 }
@@ -132,8 +150,9 @@ std::pair<double, double> dihedral_range(const std::vector<point3>& p, const std
 }
 
 template <std::size_t D>
-plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double bound, unsigned threads,
-                   const std::function<double(const point<D>&)>& size, double sliver, const conformer::labelling* l) {
+plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary<D>& b, double bound, unsigned threads,
+                   const std::function<double(const point<D>&)>& size, double sliver, const conformer::labelling* l,
+                   std::vector<std::vector<char>>* todo) {
   plan<D> out;
   const auto& bp = b.points;
   std::vector<sizing::aabb<D>> boxes(b.faces.size());
@@ -143,20 +162,26 @@ plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double b
   // chunk order (deterministic)
   struct chunk {
     std::span<const cell_t<D>> cells;
+    char* todo;  // per cell: 0 = known good, skipped; set to 0 when found good
   };
   constexpr std::size_t piece = 4096;
   std::vector<chunk> chunks;
-  for (const auto& s : d.segments()) {
-    const auto cells = s.cell_data();
-    for (std::size_t a = 0; a < cells.size(); a += piece) chunks.push_back({cells.subspan(a, std::min(piece, cells.size() - a))});
+  for (std::size_t r = 0; r < cells_of.size(); ++r) {
+    const std::span<const cell_t<D>> cells(cells_of[r]);
+    char* flags = todo ? (*todo)[r].data() : nullptr;
+    for (std::size_t a = 0; a < cells.size(); a += piece)
+      chunks.push_back({cells.subspan(a, std::min(piece, cells.size() - a)), flags ? flags + a : nullptr});
   }
   std::vector<std::vector<candidate<D>>> found(chunks.size());
   std::vector<std::vector<std::uint32_t>> faces(chunks.size());
   std::vector<std::size_t> ids(chunks.size());
   std::iota(ids.begin(), ids.end(), std::size_t{0});
-  const auto& p = d.points();
+  const auto& p = b.points;
   for_each(execution::par(threads), ids, [&](std::size_t k) {
-    for (const auto& c : chunks[k].cells) {
+    char* flag = chunks[k].todo;
+    for (std::size_t ci = 0; ci < chunks[k].cells.size(); ++ci) {
+      const auto& c = chunks[k].cells[ci];
+      if (flag && !flag[ci]) continue;
       double shortest = 1e300;
       std::size_t si = 0, sj = 1;
       for (std::size_t i = 0; i <= D; ++i)
@@ -172,7 +197,10 @@ plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double b
           bad_shape = lo < sliver || hi > 180 - 2 * sliver;
         }
       }
-      if (!bad_shape && !(size && 3 * r * r > size(at) * size(at))) continue;
+      if (!bad_shape && !(size && 3 * r * r > size(at) * size(at))) {
+        if (flag) flag[ci] = 0;  // good, and a cell never changes: not looked at again
+        continue;
+      }
       if (D == 2 && bad_shape) {
         // Ungor's off-centre: on the shortest edge's bisector, no farther from it than the apex
         // of the triangle on that edge with the bound's angle (so that triangle is not bad), if
@@ -249,10 +277,347 @@ plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double b
   return out;
 }
 
+namespace {
+
 template <std::size_t D>
-domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labelling& l, domain<D> d,
-                 const conformer::options& co, const options& o, const mesher<D>& mesh, stats& st) {
+using face_t = std::array<vertex_id, D>;
+
+template <std::size_t D>
+face_t<D> key_of(face_t<D> f) {
+  std::sort(f.begin(), f.end());
+  return f;
+}
+
+template <std::size_t D>
+struct face_hash {
+  std::size_t operator()(const face_t<D>& f) const {
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (auto v : f) h = (h ^ v) * 0xff51afd7ed558ccdull, h ^= h >> 29;
+    return static_cast<std::size_t>(h);
+  }
+};
+template <std::size_t D>
+using face_set = std::unordered_set<face_t<D>, face_hash<D>>;
+
+/// The points [first, end) of `p` in a uniform grid (compressed rows), for "which of them lie near
+/// this box". Doubles select candidates; exact predicates decide.
+template <std::size_t D>
+class point_bins {
+ public:
+  point_bins(const std::vector<point<D>>& p, std::size_t first) : p_(p) {
+    lo_ = p.empty() ? point<D>{} : p[0];
+    point<D> hi = lo_;
+    for (const auto& q : p)
+      for (std::size_t k = 0; k < D; ++k) lo_[k] = std::min(lo_[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+    const std::size_t m = p.size() > first ? p.size() - first : 0;
+    double span = 0;
+    for (std::size_t k = 0; k < D; ++k) span = std::max(span, hi[k] - lo_[k]);
+    span = std::max(span, 1e-300);
+    double vol = 1;
+    for (std::size_t k = 0; k < D; ++k) vol *= std::max(hi[k] - lo_[k], 1e-3 * span);
+    const double target = std::clamp(2.0 * static_cast<double>(m), 64.0, 4194304.0);
+    const double side = std::pow(vol / target, 1.0 / static_cast<double>(D));
+    std::size_t total = 1;
+    for (std::size_t k = 0; k < D; ++k) {
+      n_[k] = static_cast<long>(std::clamp(std::ceil((hi[k] - lo_[k]) / side), 1.0, 4096.0));
+      inv_[k] = static_cast<double>(n_[k]) / std::max(hi[k] - lo_[k], 1e-300);
+      total *= static_cast<std::size_t>(n_[k]);
+    }
+    start_.assign(total + 1, 0);
+    for (std::size_t v = first; v < p.size(); ++v) ++start_[index(p[v]) + 1];
+    for (std::size_t i = 0; i < total; ++i) start_[i + 1] += start_[i];
+    ids_.resize(m);
+    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t v = first; v < p.size(); ++v) ids_[fill[index(p[v])]++] = static_cast<vertex_id>(v);
+  }
+  /// f(id) for the points in the grid cells meeting [lo, hi]; f returning true stops.
+  template <class F>
+  bool any(const point<D>& lo, const point<D>& hi, F&& f) const {
+    std::array<long, D> a, b;
+    for (std::size_t k = 0; k < D; ++k) a[k] = coord(lo[k], k), b[k] = coord(hi[k], k);
+    std::array<long, D> c = a;
+    for (;;) {
+      std::size_t i = 0;
+      for (std::size_t k = D; k-- > 0;) i = i * static_cast<std::size_t>(n_[k]) + static_cast<std::size_t>(c[k]);
+      for (std::uint32_t j = start_[i]; j < start_[i + 1]; ++j)
+        if (f(ids_[j])) return true;
+      std::size_t k = 0;
+      while (k < D && ++c[k] > b[k]) c[k] = a[k], ++k;
+      if (k == D) return false;
+    }
+  }
+
+ private:
+  long coord(double x, std::size_t k) const {
+    const double t = std::floor((x - lo_[k]) * inv_[k]);
+    return static_cast<long>(std::clamp(t, 0.0, static_cast<double>(n_[k] - 1)));
+  }
+  std::size_t index(const point<D>& q) const {
+    std::size_t i = 0;
+    for (std::size_t k = D; k-- > 0;) i = i * static_cast<std::size_t>(n_[k]) + static_cast<std::size_t>(coord(q[k], k));
+    return i;
+  }
+  const std::vector<point<D>>& p_;
+  point<D> lo_;
+  std::array<double, D> inv_{};
+  std::array<long, D> n_{};
+  std::vector<std::uint32_t> start_;
+  std::vector<vertex_id> ids_;
+};
+
+/// Does the perturbed circumball of the positive cell c hold y? (the front mesher's criterion)
+template <std::size_t D>
+bool in_ball(const std::vector<point<D>>& p, const cell_t<D>& c, vertex_id y) {
+  if constexpr (D == 2)
+    return geometry::in_circle_perturbed(p[c[0]], p[c[1]], p[c[2]], p[y]) > 0;
+  else
+    return geometry::in_sphere_perturbed(p[c[0]], p[c[1]], p[c[2]], p[c[3]], p[y]) > 0;
+}
+
+/// The faces of cell c, each oriented to face into it (the front mesher's convention).
+template <std::size_t D>
+std::array<face_t<D>, D + 1> faces_into(const cell_t<D>& c) {
+  std::array<face_t<D>, D + 1> out;
+  for (std::size_t i = 0; i <= D; ++i) {
+    std::size_t m = 0;
+    for (std::size_t j = 0; j <= D; ++j)
+      if (j != i) out[i][m++] = c[j];
+    if ((D - i) % 2 == 1) std::swap(out[i][0], out[i][1]);
+  }
+  return out;
+}
+
+/// D! times the signed volume of the cone from o over face f (divergence theorem), and of a cell.
+template <std::size_t D>
+double cone(const std::vector<point<D>>& p, const face_t<D>& f, const point<D>& o) {
+  if constexpr (D == 2) {
+    const point2 a = p[f[0]] - o, b = p[f[1]] - o;
+    return a[0] * b[1] - a[1] * b[0];
+  } else {
+    return dot(p[f[0]] - o, cross(p[f[1]] - o, p[f[2]] - o));
+  }
+}
+template <std::size_t D>
+double cell_measure(const std::vector<point<D>>& p, const cell_t<D>& c) {
+  if constexpr (D == 2) {
+    const point2 a = p[c[1]] - p[c[0]], b = p[c[2]] - p[c[0]];
+    return std::abs(a[0] * b[1] - a[1] * b[0]);
+  } else {
+    return std::abs(dot(p[c[1]] - p[c[0]], cross(p[c[2]] - p[c[0]], p[c[3]] - p[c[0]])));
+  }
+}
+
+}  // namespace
+
+template <std::size_t D>
+bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary<D>& b1, const conformer::labelling& l0,
+                     const conformer::labelling& l1, cells_by_region<D>& cells, unsigned threads, std::size_t* removed_count,
+                     std::size_t* made_count, std::vector<std::vector<char>>* flags) {
+  const auto& p = b1.points;
+  const std::size_t n0 = b0.points.size();
+  if (p.size() < n0 || l0.regions.size() != l1.regions.size() || cells.size() != l1.regions.size()) return false;
+  for (std::size_t r = 0; r < l1.regions.size(); ++r)
+    if (l0.regions[r].number != l1.regions[r].number) return false;
+  // the boundary faces that went (split) and came
+  face_set<D> old_keys, new_keys;
+  old_keys.reserve(b0.faces.size()), new_keys.reserve(b1.faces.size());
+  for (const auto& F : b0.faces) old_keys.insert(key_of<D>(F));
+  for (const auto& F : b1.faces) new_keys.insert(key_of<D>(F));
+  face_set<D> gone;
+  std::vector<char> on_gone(p.size(), 0);
+  std::vector<std::size_t> gone_faces, came_faces;
+  for (std::size_t f = 0; f < b0.faces.size(); ++f)
+    if (!new_keys.count(key_of<D>(b0.faces[f]))) {
+      gone.insert(key_of<D>(b0.faces[f]));
+      gone_faces.push_back(f);
+      for (auto v : b0.faces[f]) on_gone[v] = 1;
+    }
+  for (std::size_t f = 0; f < b1.faces.size(); ++f)
+    if (!old_keys.count(key_of<D>(b1.faces[f]))) came_faces.push_back(f);
+  if (p.size() == n0 && gone_faces.empty() && came_faces.empty()) return true;
+  if (flags && flags->size() != cells.size()) return false;
+  // 1. the cavities: cells whose perturbed ball holds a new point, or that rest on a gone face
+  const point_bins<D> bins(p, n0);
+  struct chunk {
+    std::size_t region, first, count;
+  };
+  constexpr std::size_t piece = 8192;
+  std::vector<chunk> chunks;
+  for (std::size_t r = 0; r < cells.size(); ++r)
+    for (std::size_t a = 0; a < cells[r].size(); a += piece) chunks.push_back({r, a, std::min(piece, cells[r].size() - a)});
+  std::vector<std::vector<char>> dead(cells.size());
+  for (std::size_t r = 0; r < cells.size(); ++r) dead[r].assign(cells[r].size(), 0);
+  for_each(execution::par(threads), chunks, [&](const chunk& ch) {
+    for (std::size_t i = ch.first; i < ch.first + ch.count; ++i) {
+      cell_t<D> c = cells[ch.region][i];
+      char& out = dead[ch.region][i];
+      std::size_t marked = 0;
+      for (auto v : c) marked += on_gone[v];
+      if (marked >= D)
+        for (const auto& g : faces_into<D>(c))
+          if (gone.count(key_of<D>(g))) out = 1;
+      if (out || p.size() == n0) continue;
+      point<D> at;
+      double r;
+      if (!circumball(p, c, at, r)) {
+        out = 1;  // flat in double precision: re-meshed, which is always safe
+        continue;
+      }
+      double m = 0;
+      for (double x : at) m = std::max(m, std::abs(x));
+      const double pad = r * (1 + 1e-8) + 64 * std::numeric_limits<double>::epsilon() * (m + r) + 1e-300;
+      point<D> lo, hi;
+      for (std::size_t k = 0; k < D; ++k) lo[k] = at[k] - pad, hi[k] = at[k] + pad;
+      bool oriented = false;
+      out = bins.any(lo, hi, [&](vertex_id y) {
+        if (squared_distance(p[y], at) > pad * pad) return false;
+        if (!oriented) {
+          int o;
+          if constexpr (D == 2)
+            o = geometry::orient2d(p[c[0]], p[c[1]], p[c[2]]);
+          else
+            o = geometry::orient3d(p[c[0]], p[c[1]], p[c[2]], p[c[3]]);
+          if (o < 0) std::swap(c[0], c[1]);
+          oriented = true;
+        }
+        return in_ball(p, c, y);
+      });
+    }
+  }, [&](const chunk& ch) { return static_cast<double>(ch.count); });
+  // 2. each region's cavity boundary: the faces of its dead cells met once, less the gone faces,
+  // plus the new boundary faces on its side
+  const auto grid = front::make_grid(std::span<const point<D>>(p));
+  struct task {
+    std::size_t region;
+    std::vector<face_t<D>> front;
+    double measure = 0;  // D! x the volume the dead cells held
+  };
+  std::vector<task> tasks;
+  std::vector<std::size_t> region_first(cells.size() + 1, 0);
+  std::size_t removed = 0;
+  for (std::size_t r = 0; r < cells.size(); ++r) {
+    region_first[r] = tasks.size();
+    std::unordered_map<face_t<D>, face_t<D>, face_hash<D>> open;
+    for (std::size_t i = 0; i < cells[r].size(); ++i) {
+      if (!dead[r][i]) continue;
+      ++removed;
+      for (const auto& g : faces_into<D>(cells[r][i])) {
+        auto [it, fresh] = open.try_emplace(key_of<D>(g), g);
+        if (fresh) continue;
+        face_t<D> rev = g;
+        std::swap(rev[0], rev[1]);
+        if (key_of<D>(rev) != key_of<D>(it->second) || it->second == g) return false;  // two dead cells on one side of a face
+        open.erase(it);
+      }
+    }
+    for (std::size_t f : gone_faces)
+      for (int s = 0; s < 2; ++s)
+        if (l0.side[f][static_cast<std::size_t>(s)] == static_cast<int>(r))
+          if (open.erase(key_of<D>(b0.faces[f])) != 1) return false;
+    for (std::size_t f : came_faces)
+      for (int s = 0; s < 2; ++s)
+        if (l1.side[f][static_cast<std::size_t>(s)] == static_cast<int>(r)) {
+          auto F = b1.faces[f];
+          if (s == 1) std::swap(F[0], F[1]);
+          if (!open.try_emplace(key_of<D>(F), F).second) return false;
+        }
+    if (open.empty()) continue;
+    std::vector<face_t<D>> front;
+    front.reserve(open.size());
+    for (const auto& [k, F] : open) front.push_back(F);
+    std::sort(front.begin(), front.end(), [](const face_t<D>& x, const face_t<D>& y) { return key_of<D>(x) < key_of<D>(y); });
+    // connected pieces (faces sharing a vertex), in order of their first face, batched into tasks
+    // of about 4096 faces: a task is a union of closed fronts, so the front mesher fills each
+    std::unordered_map<vertex_id, std::uint32_t> local;
+    for (const auto& F : front)
+      for (auto v : F) local.try_emplace(v, static_cast<std::uint32_t>(local.size()));
+    union_find<std::uint32_t> uf(local.size());
+    for (const auto& F : front)
+      for (std::size_t k = 1; k < D; ++k) uf.unite(local[F[0]], local[F[k]]);
+    std::unordered_map<std::uint32_t, std::uint32_t> piece_of;
+    std::vector<std::vector<face_t<D>>> pieces;
+    for (const auto& F : front) {
+      auto [it, fresh] = piece_of.try_emplace(uf.find(local[F[0]]), static_cast<std::uint32_t>(pieces.size()));
+      if (fresh) pieces.emplace_back();
+      pieces[it->second].push_back(F);
+    }
+    for (auto& pc : pieces) {
+      if (tasks.size() == region_first[r] || tasks.back().front.size() >= 4096) tasks.push_back({r, {}, 0});
+      tasks.back().front.insert(tasks.back().front.end(), pc.begin(), pc.end());
+    }
+  }
+  region_first[cells.size()] = tasks.size();
+  // 3. fill every task's cavities with the front mesher, in parallel; a task whose cells do not
+  // fill the volume its front encloses (doubles, relative 1e-8: a safety net for a front that is
+  // not Delaunay, never a topological decision) fails the round
+  std::vector<std::vector<cell_t<D>>> made(tasks.size());
+  std::vector<char> ok(tasks.size(), 1);
+  std::vector<std::size_t> order(tasks.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  for_each(execution::par(threads), order, [&](std::size_t t) {
+    const auto& tk = tasks[t];
+    try {
+      made[t] = front::wrap(std::span<const point<D>>(p), grid, tk.front,
+                            "segment " + std::to_string(l1.regions[tk.region].number) + " '" + l1.regions[tk.region].name + "' (cavity)");
+    } catch (const std::exception&) {
+      ok[t] = 0;
+      return;
+    }
+    const point<D> o = p[tk.front[0][0]];
+    double enclosed = 0, filled = 0, scale = 0;
+    for (const auto& F : tk.front) {
+      const double v = cone<D>(p, F, o);
+      enclosed += v, scale += std::abs(v);
+    }
+    for (const auto& c : made[t]) filled += cell_measure<D>(p, c);
+    if (!(std::abs(std::abs(enclosed) - filled) <= 1e-8 * std::max(scale, filled) + 1e-300)) ok[t] = 0;
+  }, [&](std::size_t t) { return static_cast<double>(tasks[t].front.size()); });
+  if (std::find(ok.begin(), ok.end(), 0) != ok.end()) return false;
+  // every new point must be a vertex of a new cell (none lies outside every cavity)
+  std::vector<char> used(p.size() - n0, 0);
+  for (const auto& m : made)
+    for (const auto& c : m)
+      for (auto v : c)
+        if (v >= n0) used[v - n0] = 1;
+  if (std::find(used.begin(), used.end(), 0) != used.end()) return false;
+  // 4. each region: the cells that stay, in their order, then the new ones, task by task
+  std::size_t count = 0;
+  for (std::size_t r = 0; r < cells.size(); ++r) {
+    std::vector<cell_t<D>> next;
+    std::size_t add = 0;
+    for (std::size_t t = region_first[r]; t < region_first[r + 1]; ++t) add += made[t].size();
+    next.reserve(cells[r].size() + add);
+    for (std::size_t i = 0; i < cells[r].size(); ++i)
+      if (!dead[r][i]) next.push_back(cells[r][i]);
+    if (flags) {  // the survivors' flags, then 1 (not looked at yet) for every new cell
+      auto& fl = (*flags)[r];
+      std::size_t w = 0;
+      for (std::size_t i = 0; i < cells[r].size(); ++i)
+        if (!dead[r][i]) fl[w++] = fl[i];
+      fl.resize(w);
+      fl.resize(w + add, 1);
+    }
+    for (std::size_t t = region_first[r]; t < region_first[r + 1]; ++t) next.insert(next.end(), made[t].begin(), made[t].end());
+    count += add;
+    cells[r] = std::move(next);
+  }
+  if (removed_count) *removed_count = removed;
+  if (made_count) *made_count = count;
+  return true;
+}
+
+template <std::size_t D>
+domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labelling& l, cells_by_region<D> cells,
+                 const conformer::options& co, const options& o, const meshers<D>& mesh, stats& st) {
   const double bound = ratio_bound(D, o.bound);
+  // per cell: 1 until the plan has found it good (a cell's shape and size never change, so a
+  // good one that survives a round is not measured again)
+  auto all_todo = [](const cells_by_region<D>& c) {
+    std::vector<std::vector<char>> t(c.size());
+    for (std::size_t r = 0; r < c.size(); ++r) t[r].assign(c[r].size(), 1);
+    return t;
+  };
+  auto todo = all_todo(cells);
   for (;;) {
     std::function<double(const point<D>&)> size;
     if constexpr (D == 2)
@@ -266,7 +631,7 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       clock = now;
       return s;
     };
-    auto pl = plan_round(d, b, bound, o.threads, size, D == 3 ? o.sliver_angle : 0.0, &l);
+    auto pl = plan_round(cells, b, bound, o.threads, size, D == 3 ? o.sliver_angle : 0.0, &l, &todo);
     st.plan_seconds += lap();
     st.outside += pl.outside;
     st.bad_left = pl.bad;
@@ -275,7 +640,7 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       st.converged = true;
       break;
     }
-    if (st.rounds >= (o.max_rounds ? o.max_rounds : D == 2 ? 250 : 60) || d.points().size() >= o.max_points || (pl.add.empty() && pl.split.empty())) break;
+    if (st.rounds >= (o.max_rounds ? o.max_rounds : D == 2 ? 250 : 60) || b.points.size() >= o.max_points || (pl.add.empty() && pl.split.empty())) break;
     ++st.rounds;
     st.inserted += pl.add.size();
     st.split_requests += pl.split.size();
@@ -289,9 +654,18 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       st.conform_seconds += lap();
       auto l2 = conformer::label(b2, p, o.threads);
       st.label_seconds += lap();
-      auto d2 = mesh(b2, l2);
+      auto c2 = cells;
+      auto t2 = todo;
+      std::size_t removed = 0, made = 0;
+      if (remesh_cavities(b, b2, l, l2, c2, o.threads, &removed, &made, &t2)) {
+        st.cavity_cells += removed, st.cavity_made += made;
+      } else {
+        c2 = mesh.wrap(b2, l2);
+        t2 = all_todo(c2);
+        ++st.full_remeshes;
+      }
       st.mesh_seconds += lap();
-      b = std::move(b2), l = std::move(l2), d = std::move(d2);
+      b = std::move(b2), l = std::move(l2), cells = std::move(c2), todo = std::move(t2);
     } catch (const std::exception& e) {
       st.failure = "round " + std::to_string(st.rounds) + ": " + e.what();
       --st.rounds;
@@ -300,16 +674,24 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       break;
     }
   }
-  return d;
+  return mesh.assemble(b, l, std::move(cells));
 }
 
-template plan<2> plan_round<2>(const domain<2>&, const conformer::boundary<2>&, double, unsigned,
-                               const std::function<double(const point2&)>&, double, const conformer::labelling*);
-template plan<3> plan_round<3>(const domain<3>&, const conformer::boundary<3>&, double, unsigned,
-                               const std::function<double(const point3&)>&, double, const conformer::labelling*);
-template domain<2> refine<2>(const plc<2>&, conformer::boundary<2>&, conformer::labelling&, domain<2>, const conformer::options&,
-                             const options&, const mesher<2>&, stats&);
-template domain<3> refine<3>(const plc<3>&, conformer::boundary<3>&, conformer::labelling&, domain<3>, const conformer::options&,
-                             const options&, const mesher<3>&, stats&);
+template plan<2> plan_round<2>(const cells_by_region<2>&, const conformer::boundary<2>&, double, unsigned,
+                               const std::function<double(const point2&)>&, double, const conformer::labelling*,
+                               std::vector<std::vector<char>>*);
+template plan<3> plan_round<3>(const cells_by_region<3>&, const conformer::boundary<3>&, double, unsigned,
+                               const std::function<double(const point3&)>&, double, const conformer::labelling*,
+                               std::vector<std::vector<char>>*);
+template bool remesh_cavities<2>(const conformer::boundary<2>&, const conformer::boundary<2>&, const conformer::labelling&,
+                                 const conformer::labelling&, cells_by_region<2>&, unsigned, std::size_t*, std::size_t*,
+                                 std::vector<std::vector<char>>*);
+template bool remesh_cavities<3>(const conformer::boundary<3>&, const conformer::boundary<3>&, const conformer::labelling&,
+                                 const conformer::labelling&, cells_by_region<3>&, unsigned, std::size_t*, std::size_t*,
+                                 std::vector<std::vector<char>>*);
+template domain<2> refine<2>(const plc<2>&, conformer::boundary<2>&, conformer::labelling&, cells_by_region<2>, const conformer::options&,
+                             const options&, const meshers<2>&, stats&);
+template domain<3> refine<3>(const plc<3>&, conformer::boundary<3>&, conformer::labelling&, cells_by_region<3>, const conformer::options&,
+                             const options&, const meshers<3>&, stats&);
 
 }  // namespace gsse::refinement

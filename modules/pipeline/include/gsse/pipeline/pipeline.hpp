@@ -98,6 +98,13 @@ struct mesh_segments {
   const front::creation_options* create = nullptr;
   front::creation_stats* created = nullptr;  // filled when create is set
   domain<D> operator()(const conformer::boundary<D>& b, const conformer::labelling& l, unsigned threads) const;
+  /// The two halves without point creation, for a caller that keeps the cells between meshings
+  /// (modules/refinement): every region's cells in the boundary's point ids (labelling order),
+  /// and the domain made from such cells (points of `pts` used by no cell dropped).
+  static std::vector<std::vector<std::array<vertex_id, D + 1>>> wrap(const conformer::boundary<D>& b,
+                                                                      const conformer::labelling& l, unsigned threads);
+  static domain<D> assemble(const std::vector<point<D>>& pts, const conformer::labelling& l,
+                            std::vector<std::vector<std::array<vertex_id, D + 1>>> cells, unsigned threads);
 };
 
 /// Element quality: radius-edge ratio (circumradius / shortest edge; 0.577 for the equilateral

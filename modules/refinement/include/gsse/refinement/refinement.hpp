@@ -61,12 +61,21 @@ struct stats {
   bool converged = false;
   // wall seconds spent in each step, summed over the rounds
   double plan_seconds = 0, conform_seconds = 0, label_seconds = 0, mesh_seconds = 0;
+  // cells deleted and made by the rounds' cavity re-meshing; rounds meshed from scratch instead
+  // (a cavity that did not close or fill its volume: a safety net, 0 on every input measured)
+  std::size_t cavity_cells = 0, cavity_made = 0, full_remeshes = 0;
   // not empty: a round failed (its error); the mesh is the last good round's. Seen on the rotated
   // MOSFET and FinFET: after round 2 the labelling finds a region point outside the domain
   std::string failure;
 };
 
-/// What one round decides from a conforming Delaunay mesh `d` of boundary `b`.
+/// Cells of every region of a labelling (in its order), in the boundary's point ids.
+template <std::size_t D>
+using cells_by_region = std::vector<std::vector<std::array<vertex_id, D + 1>>>;
+
+/// What one round decides from a conforming Delaunay mesh (`cells` on the points of `b`).
+/// `todo` (optional, one flag per cell): only cells flagged nonzero are measured, and the flag of
+/// every one found good is cleared (remesh_cavities carries the flags of the cells that stay).
 template <std::size_t D>
 struct plan {
   std::vector<point<D>> add;       // free points to insert
@@ -77,19 +86,39 @@ struct plan {
   std::size_t excepted = 0;        // of those, excepted (small input angle)
 };
 template <std::size_t D>
-plan<D> plan_round(const domain<D>& d, const conformer::boundary<D>& b, double ratio_bound, unsigned threads,
+plan<D> plan_round(const cells_by_region<D>& cells, const conformer::boundary<D>& b, double ratio_bound, unsigned threads,
                    const std::function<double(const point<D>&)>& size = {}, double sliver_angle = 0,
-                   const conformer::labelling* labels = nullptr);
+                   const conformer::labelling* labels = nullptr, std::vector<std::vector<char>>* todo = nullptr);
 
-/// Meshes the segments of a labelled boundary (the pipeline's mesh_segments).
+/// How the refinement meshes (the pipeline's mesh_segments::wrap and ::assemble): every region of
+/// a labelled boundary from scratch (the first mesh, and the fallback when a round's cavities do
+/// not close), and the domain made from the final cells.
 template <std::size_t D>
-using mesher = std::function<domain<D>(const conformer::boundary<D>&, const conformer::labelling&)>;
+struct meshers {
+  std::function<cells_by_region<D>(const conformer::boundary<D>&, const conformer::labelling&)> wrap;
+  std::function<domain<D>(const conformer::boundary<D>&, const conformer::labelling&, cells_by_region<D>)> assemble;
+};
 
-/// Refines `d`, the mesh of boundary `b` (labelled `l`) of PLC `p`, until no element exceeds the
-/// bound except the excepted ones, or the round or point cap is reached (stats says which).
+/// Meshes again only where the points of `after` that `before` lacks changed the mesh: the cells
+/// of `cells` (a conforming Delaunay mesh of `before`) whose perturbed circumball holds a new
+/// point or that rest on a boundary face `after` no longer has are the cavities, which the front
+/// mesher fills from their boundary (with `after`'s new faces). Every cell outside them stays
+/// Delaunay, so the result is the mesh a full meshing of `after` makes. Requires that `after`
+/// keeps every point id of `before` (conformer::resume) and that both labellings list the same
+/// regions. Returns false and leaves `cells` alone when a cavity does not close or fill its
+/// volume (the caller then meshes from scratch). `removed`: cells deleted, `made`: cells made.
+/// `flags` (one per cell, optional) follow their cells; every new cell gets 1.
+template <std::size_t D>
+bool remesh_cavities(const conformer::boundary<D>& before, const conformer::boundary<D>& after,
+                     const conformer::labelling& labels_before, const conformer::labelling& labels_after,
+                     cells_by_region<D>& cells, unsigned threads, std::size_t* removed = nullptr, std::size_t* made = nullptr,
+                     std::vector<std::vector<char>>* flags = nullptr);
+
+/// Refines `cells`, the mesh of boundary `b` (labelled `l`) of PLC `p`, until no element exceeds
+/// the bound except the excepted ones, or the round or point cap is reached (stats says which).
 /// `b` and `l` are updated with the mesh. `co`: the conformer options `b` was made with.
 template <std::size_t D>
-domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labelling& l, domain<D> d,
-                 const conformer::options& co, const options& o, const mesher<D>& mesh, stats& st);
+domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labelling& l, cells_by_region<D> cells,
+                 const conformer::options& co, const options& o, const meshers<D>& mesh, stats& st);
 
 }  // namespace gsse::refinement
