@@ -42,7 +42,7 @@ check() {  # poly base -> "delaunay(deepest) | re max | re>B | dih min | <5deg"
 import re, sys
 t = open(sys.argv[1]).read()
 def grab(p, d="?"):
-    m = re.search(p, t)
+    m = re.search(p, t, re.M)
     return m.group(1) if m else d
 dl = grab(r"^delaunay: (\w+)", "?")
 deep = grab(r"deepest vertex inside a circumsphere: ([0-9.e+-]+)")
@@ -50,7 +50,7 @@ re_max = grab(r"radius-edge ratio min [0-9.]+, median [0-9.]+, max ([0-9.e+]+)")
 above = grab(r"above " + re.escape(sys.argv[2]) + r": (\d+)", grab(r"above 1.414: (\d+)"))
 dmin = grab(r"dihedral angles min ([0-9.e+-]+) deg")
 below5 = grab(r"below 5 deg: (\d+)")
-overall = grab(r"^meshcheck: (\w+)", "?")
+overall = (re.findall(r"^meshcheck: (PASS|FAIL)", t, re.M) or ["?"])[-1]
 print(f"{dl} ({deep}) | {overall} | {re_max} | {above} | {dmin} | {below5}")
 PY
 }
