@@ -980,15 +980,17 @@ class state3 : public state<3> {
 
   void triangulate(std::uint32_t f) {
     auto& S = facets_[f];
-    S.clean.clear();
-    if (S.checked)
+    // triangulated again before a check: the keys known clean at the last check stay valid
+    if (S.checked) {
+      S.clean.clear();
       for (std::size_t t = 0; t < S.triangles.size(); ++t)
         if (S.was_clean[t]) {
           auto key = S.triangles[t];
           std::sort(key.begin(), key.end());
           S.clean.push_back(key);
         }
-    std::sort(S.clean.begin(), S.clean.end());
+      std::sort(S.clean.begin(), S.clean.end());
+    }
     S.checked = false;
     // the last triangulation, whose triangles the wrap keeps where no point added since disturbs
     // them (same result, fewer searches: the conformer's late rounds re-wrap a large facet for a
@@ -1298,21 +1300,21 @@ class state3 : public state<3> {
         if (!S.checked) std::sort(key.begin(), key.end());
         // clean at the last check: only a point inserted since can encroach it
         vertex_id y = no_vertex;
-        if (!(S.checked || std::binary_search(S.clean.begin(), S.clean.end(), key)) || in_closed_ball(recent, T, cc, r))
-          y = facet_encroacher(T[0], T[1], T[2], cc, r, ties);
-        S.was_clean[t] = y == no_vertex;
+        const bool known_clean = S.checked || std::binary_search(S.clean.begin(), S.clean.end(), key);
+        if (!known_clean || in_closed_ball(recent, T, cc, r)) y = facet_encroacher(T[0], T[1], T[2], cc, r, ties);
         // too large: circumradius above that of the facet lattice's equilateral triangle
         // (size / sqrt 3), not merely by rounding. An edge test ("longer than the size") cut the
         // near-right triangles where the lattice meets boundary strips and merged facets' seams,
         // a cascade of one row per round (docs/design-decisions.md)
         bool too_big = false;
-        if (sized()) {
+        if (sized() && !known_clean) {  // clean: was not too large either, and has not changed
           const point3 u = p[T[1]] - p[T[0]], v = p[T[2]] - p[T[0]], z = p[T[2]] - p[T[1]], n = cross(u, v);
           // R^2 = |u|^2 |v|^2 |z|^2 / (4 |n|^2) against size^2 / 3 (graded: the size at the
           // circumcentre)
           const double h = graded() ? size_at(cc) : opt_.size;
           too_big = 3 * dot(u, u) * dot(v, v) * dot(z, z) > 4 * dot(n, n) * h * h * (1 + 2e-9);
         }
+        S.was_clean[t] = y == no_vertex && !too_big;
         if (y != no_vertex || too_big) mine.push_back({w.f, static_cast<std::uint32_t>(t), y});
       }
       box.quiet = mine.empty();
@@ -1774,6 +1776,23 @@ class state3 : public state<3> {
     std::vector<std::uint32_t> all(facets_.size());
     std::iota(all.begin(), all.end(), 0u);
     triangulate_all(all);
+    // every subfacet `prev` had was clean (neither encroached nor too large) against its points:
+    // only the points added since are checked against those (encroachers()), as within a run
+    {
+      std::map<std::uint32_t, std::vector<std::array<vertex_id, 3>>> had;
+      for (std::size_t k = 0; k < prev.faces.size(); ++k) {
+        auto T = prev.faces[k];
+        std::sort(T.begin(), T.end());
+        had[prev.face_source[k]].push_back(T);
+      }
+      for (auto& S : facets_) {
+        auto it = had.find(S.source);
+        if (it == had.end() || S.checked) continue;
+        S.clean = std::move(it->second);
+        std::sort(S.clean.begin(), S.clean.end());
+      }
+      checked_upto_ = prev.points.size();
+    }
     std::vector<split_candidate> first;
     for (auto& [f, Ts] : wanted) {
       std::sort(Ts.begin(), Ts.end());
