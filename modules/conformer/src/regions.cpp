@@ -126,13 +126,62 @@ point<D> face_centre(const boundary<D>& b, std::size_t f) {
   return c;
 }
 
+/// Does the segment o -> o + d meet the box (padded)? Doubles, a filter only: the faces it keeps
+/// are decided by cast()'s exact predicates, in ascending order as if every face were tried.
+template <std::size_t D>
+bool segment_meets(const sizing::aabb<D>& box, const point<D>& o, const point<D>& d) {
+  double t0 = 0, t1 = 1;
+  for (std::size_t k = 0; k < D; ++k) {
+    const double pad = 1e-9 * (box.hi[k] - box.lo[k]) + 1e-12 * (std::abs(box.lo[k]) + std::abs(box.hi[k])) + 1e-300;
+    const double lo = box.lo[k] - pad, hi = box.hi[k] + pad;
+    if (d[k] == 0) {
+      if (o[k] < lo || o[k] > hi) return false;
+      continue;
+    }
+    double a = (lo - o[k]) / d[k], c = (hi - o[k]) / d[k];
+    if (a > c) std::swap(a, c);
+    t0 = std::max(t0, a - 1e-9), t1 = std::min(t1, c + 1e-9);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+/// The boundary's faces in a bounding-volume hierarchy: a ray visits the faces whose boxes it
+/// meets, in ascending order, so that cast() decides exactly as if it tried every face.
+template <std::size_t D>
+struct face_index {
+  explicit face_index(const boundary<D>& b) {
+    std::vector<sizing::aabb<D>> boxes(b.faces.size());
+    for (std::size_t f = 0; f < b.faces.size(); ++f) {
+      boxes[f] = sizing::aabb<D>::empty();
+      for (auto v : b.faces[f]) boxes[f].add(b.points[v]);
+    }
+    tree = sizing::box_tree<D>(std::move(boxes), std::vector<double>(b.faces.size(), 0.0));
+  }
+  /// The faces whose boxes the segment o -> o + d meets, ascending.
+  std::vector<std::uint32_t> along(const point<D>& o, const point<D>& d) const {
+    std::vector<std::uint32_t> out;
+    tree.visit([&](const sizing::aabb<D>& box) { return segment_meets(box, o, d); },
+               [&](std::uint32_t f) {
+                 out.push_back(f);
+                 return true;
+               });
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+  sizing::box_tree<D> tree;
+};
+
 /// Hit side (2*face + s) of a ray from o, trying the fixed directions in turn around `base`.
 template <std::size_t D>
 long first_side(const boundary<D>& b, const point<D>& o, const point<D>& base, long skip, double len,
-                const std::string& what, vertex_id skip_vertex = no_vertex) {
+                const std::string& what, vertex_id skip_vertex = no_vertex, const face_index<D>* index = nullptr) {
   for (std::size_t k = 0; k < ray_tilts.size(); ++k) {
     bool degenerate, on_face;
-    auto [f, s] = cast(b, o, tilt_dir(base, k, len), skip, degenerate, on_face, skip_vertex);
+    const point<D> dir = tilt_dir(base, k, len);
+    std::vector<std::uint32_t> near;
+    if (index) near = index->along(o, dir);
+    auto [f, s] = cast(b, o, dir, skip, degenerate, on_face, skip_vertex, index ? &near : nullptr);
     if (on_face) throw conform_error(what + " lies on the boundary");
     if (degenerate) continue;
     return f < 0 ? -1 : 2 * f + s;
@@ -320,6 +369,7 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
   auto hole_what = [&](std::size_t h) { return p.source + ": hole point " + std::to_string(h + 1); };
   std::vector<long> hits(probes.size() + nr + nh);
   std::vector<std::exception_ptr> failed(hits.size());
+  const face_index<D> index(b);
   std::vector<std::size_t> order(hits.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   for_each(execution::par(threads), order, [&](std::size_t i) {
@@ -330,17 +380,17 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
           point<D> x{};
           x[0] = 1;
           hits[i] = first_side(b, pts[extreme[root]], x, -1, len, p.source + ": probe of vertex " + std::to_string(extreme[root] + 1),
-                               extreme[root]);
+                               extreme[root], &index);
         } else {
           point<D> n = face_normal(b, f);
           if (s % 2) n = -1.0 * n;
           hits[i] = first_side(b, face_centre(b, f), (1.0 / std::sqrt(dot(n, n))) * n, static_cast<long>(f), len,
-                               p.source + ": probe of face " + std::to_string(f + 1));
+                               p.source + ": probe of face " + std::to_string(f + 1), no_vertex, &index);
         }
       } else if (const std::size_t r = i - probes.size(); r < nr) {
-        hits[i] = first_side(b, p.regions[r].at, point<D>{}, -1, len, region_what(r));
+        hits[i] = first_side(b, p.regions[r].at, point<D>{}, -1, len, region_what(r), no_vertex, &index);
       } else {
-        hits[i] = first_side(b, p.holes[r - nr], point<D>{}, -1, len, hole_what(r - nr));
+        hits[i] = first_side(b, p.holes[r - nr], point<D>{}, -1, len, hole_what(r - nr), no_vertex, &index);
       }
     } catch (...) {
       failed[i] = std::current_exception();
@@ -410,62 +460,19 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
   return out;
 }
 
-/// Does the segment o -> o + d meet the box (padded)? Doubles, a filter only: the faces it keeps
-/// are decided by cast()'s exact predicates, in ascending order as if every face were tried.
-template <std::size_t D>
-bool segment_meets(const sizing::aabb<D>& box, const point<D>& o, const point<D>& d) {
-  double t0 = 0, t1 = 1;
-  for (std::size_t k = 0; k < D; ++k) {
-    const double pad = 1e-9 * (box.hi[k] - box.lo[k]) + 1e-12 * (std::abs(box.lo[k]) + std::abs(box.hi[k])) + 1e-300;
-    const double lo = box.lo[k] - pad, hi = box.hi[k] + pad;
-    if (d[k] == 0) {
-      if (o[k] < lo || o[k] > hi) return false;
-      continue;
-    }
-    double a = (lo - o[k]) / d[k], c = (hi - o[k]) / d[k];
-    if (a > c) std::swap(a, c);
-    t0 = std::max(t0, a - 1e-9), t1 = std::min(t1, c + 1e-9);
-    if (t0 > t1) return false;
-  }
-  return true;
-}
-
 template <std::size_t D>
 std::vector<int> locate_impl(const boundary<D>& b, const labelling& l, const std::vector<point<D>>& q) {
   std::vector<int> r(q.size(), exterior);
   if (q.empty()) return r;
   const double len = 4 * diameter(b.points);
-  // the faces in a bounding-volume hierarchy: a ray visits the faces whose boxes it meets
-  std::vector<sizing::aabb<D>> boxes(b.faces.size());
-  for (std::size_t f = 0; f < b.faces.size(); ++f) {
-    boxes[f] = sizing::aabb<D>::empty();
-    for (auto v : b.faces[f]) boxes[f].add(b.points[v]);
-  }
-  const sizing::box_tree<D> tree(std::move(boxes), std::vector<double>(b.faces.size(), 0.0));
-  std::vector<std::uint32_t> near;
+  const face_index<D> index(b);
   for (std::size_t i = 0; i < q.size(); ++i) {
-    long hit = -1;
-    bool found = false, on_boundary = false;
-    for (std::size_t k = 0; k < ray_tilts.size() && !found; ++k) {
-      const point<D> dir = tilt_dir(point<D>{}, k, len);
-      near.clear();
-      tree.visit([&](const sizing::aabb<D>& box) { return segment_meets(box, q[i], dir); },
-                 [&](std::uint32_t f) {
-                   near.push_back(f);
-                   return true;
-                 });
-      std::sort(near.begin(), near.end());
-      bool degenerate, on_face;
-      const auto [f, s] = cast(b, q[i], dir, -1, degenerate, on_face, no_vertex, &near);
-      if (on_face) {
-        on_boundary = true;  // on the boundary: not a volume point
-        break;
-      }
-      if (degenerate) continue;
-      found = true;
-      hit = f < 0 ? -1 : 2 * f + s;
+    long hit;
+    try {
+      hit = first_side(b, q[i], point<D>{}, -1, len, "point", no_vertex, &index);
+    } catch (const conform_error&) {
+      continue;  // on the boundary: not a volume point
     }
-    if (on_boundary || !found) continue;
     if (hit >= 0) r[i] = l.side[static_cast<std::size_t>(hit) / 2][static_cast<std::size_t>(hit) % 2];
   }
   return r;
