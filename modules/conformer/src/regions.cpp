@@ -243,6 +243,22 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
           dangling[k].push_back({u, v, fs[0]});
           continue;
         }
+        // + side of face (u,v,w) in this vertex order faces counter-clockwise around u->v
+        auto ccw_side = [&](std::uint32_t f) {
+          const auto& T = b.faces[f];
+          bool forward = false;
+          for (int j = 0; j < 3; ++j)
+            forward |= T[static_cast<std::size_t>(j)] == u && T[static_cast<std::size_t>((j + 1) % 3)] == v;
+          return 2 * static_cast<std::size_t>(f) + (forward ? 0 : 1);
+        };
+        if (fs.size() == 2 && b.face_source[fs[0]] == b.face_source[fs[1]]) {
+          // two triangles of one facet's triangulation on either side of an inner edge: they
+          // cannot overlap, and two faces pair the same in either order (no orientation test:
+          // on a slanted facet each one fell to exact arithmetic)
+          pairs.push_back({ccw_side(fs[0]), ccw_side(fs[1]) ^ 1u});
+          pairs.push_back({ccw_side(fs[1]), ccw_side(fs[0]) ^ 1u});
+          continue;
+        }
         const vertex_id w0 = third(fs[0]);
         const int axis = geometry::dominant_axis(pts[u], pts[v], pts[w0]);
         const int ref = geometry::orient_projected(pts[u], pts[v], pts[w0], axis);
@@ -270,14 +286,6 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
                        std::to_string(b.face_source[c] + 1) + ")";
             break;
           }
-          // + side of face (u,v,w) in this vertex order faces counter-clockwise around u->v
-          auto ccw_side = [&](std::uint32_t f) {
-            const auto& T = b.faces[f];
-            bool forward = false;
-            for (int j = 0; j < 3; ++j)
-              forward |= T[static_cast<std::size_t>(j)] == u && T[static_cast<std::size_t>((j + 1) % 3)] == v;
-            return 2 * static_cast<std::size_t>(f) + (forward ? 0 : 1);
-          };
           pairs.push_back({ccw_side(a), ccw_side(c) ^ 1u});
         }
       }
