@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 
 #include "gsse/container/union_find.hpp"
 #include "gsse/geometry/predicates.hpp"
@@ -377,7 +378,10 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
   auto hole_what = [&](std::size_t h) { return p.source + ": hole point " + std::to_string(h + 1); };
   std::vector<long> hits(probes.size() + nr + nh);
   std::vector<std::exception_ptr> failed(hits.size());
-  const face_index<D> index(b);
+  // a hierarchy pays for its build only over many rays (each ray alone tries every face)
+  std::optional<face_index<D>> index;
+  if (hits.size() > 32) index.emplace(b);
+  const face_index<D>* rays = index ? &*index : nullptr;
   std::vector<std::size_t> order(hits.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   for_each(execution::par(threads), order, [&](std::size_t i) {
@@ -388,17 +392,17 @@ labelling label_impl(const boundary<D>& b, const plc<D>& p, unsigned threads) {
           point<D> x{};
           x[0] = 1;
           hits[i] = first_side(b, pts[extreme[root]], x, -1, len, p.source + ": probe of vertex " + std::to_string(extreme[root] + 1),
-                               extreme[root], &index);
+                               extreme[root], rays);
         } else {
           point<D> n = face_normal(b, f);
           if (s % 2) n = -1.0 * n;
           hits[i] = first_side(b, face_centre(b, f), (1.0 / std::sqrt(dot(n, n))) * n, static_cast<long>(f), len,
-                               p.source + ": probe of face " + std::to_string(f + 1), no_vertex, &index);
+                               p.source + ": probe of face " + std::to_string(f + 1), no_vertex, rays);
         }
       } else if (const std::size_t r = i - probes.size(); r < nr) {
-        hits[i] = first_side(b, p.regions[r].at, point<D>{}, -1, len, region_what(r), no_vertex, &index);
+        hits[i] = first_side(b, p.regions[r].at, point<D>{}, -1, len, region_what(r), no_vertex, rays);
       } else {
-        hits[i] = first_side(b, p.holes[r - nr], point<D>{}, -1, len, hole_what(r - nr), no_vertex, &index);
+        hits[i] = first_side(b, p.holes[r - nr], point<D>{}, -1, len, hole_what(r - nr), no_vertex, rays);
       }
     } catch (...) {
       failed[i] = std::current_exception();
