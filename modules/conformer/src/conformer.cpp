@@ -1841,6 +1841,7 @@ class state3 : public state<3> {
         out_.faces.push_back(t);
         out_.face_source.push_back(facets_[f].source);
       }
+    out_.protect = ball_;
     return std::move(out_);
   }
 

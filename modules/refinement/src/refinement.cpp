@@ -152,7 +152,7 @@ std::pair<double, double> dihedral_range(const std::vector<point3>& p, const std
 template <std::size_t D>
 plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary<D>& b, double bound, unsigned threads,
                    const std::function<double(const point<D>&)>& size, double sliver, const conformer::labelling* l,
-                   std::vector<std::vector<char>>* todo) {
+                   std::vector<std::vector<char>>* todo, double protect_factor) {
   plan<D> out;
   const auto& bp = b.points;
   std::vector<sizing::aabb<D>> boxes(b.faces.size());
@@ -177,6 +177,16 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   std::vector<std::size_t> ids(chunks.size());
   std::iota(ids.begin(), ids.end(), std::size_t{0});
   const auto& p = b.points;
+  // 3D acute vertices: their protecting balls (conformer), grown by protect_factor
+  std::vector<std::pair<point<D>, double>> guarded;
+  for (std::size_t v = 0; v < b.protect.size() && v < p.size(); ++v)
+    if (b.protect[v] > 0) guarded.push_back({p[v], protect_factor * b.protect[v]});
+  std::vector<std::size_t> excepted(chunks.size(), 0);
+  auto near_acute = [&](const point<D>& x) {
+    for (const auto& [c, r] : guarded)
+      if (squared_distance(x, c) < r * r) return true;
+    return false;
+  };
   for_each(execution::par(threads), ids, [&](std::size_t k) {
     char* flag = chunks[k].todo;
     for (std::size_t ci = 0; ci < chunks[k].cells.size(); ++ci) {
@@ -227,6 +237,13 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
                    return true;
                  });
       x.count = static_cast<std::uint32_t>(faces[k].size()) - x.first;
+      if (bad_shape && !guarded.empty() && near_acute(at)) {
+        // small input angle: a bad element whose point falls near an acute vertex is excepted
+        // (left, counted): refining there makes the conformer go one shell deeper each round
+        faces[k].resize(x.first);
+        ++excepted[k];
+        continue;
+      }
       found[k].push_back(x);
     }
   }, [&](std::size_t k) { return static_cast<double>(chunks[k].cells.size()); });
@@ -242,7 +259,8 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       all.push_back({k, i});
       if (found[k][i].count == 0) levels.insert(accepted_points<D>::level(found[k][i].r));
     }
-  out.bad = static_cast<std::size_t>(std::count_if(all.begin(), all.end(), [&](const ref& x) { return found[x.chunk][x.index].shape; }));
+  out.excepted = std::accumulate(excepted.begin(), excepted.end(), std::size_t{0});
+  out.bad = out.excepted + static_cast<std::size_t>(std::count_if(all.begin(), all.end(), [&](const ref& x) { return found[x.chunk][x.index].shape; }));
   out.large = all.size() - out.bad;
   auto at = [&](const ref& x) -> const candidate<D>& { return found[x.chunk][x.index]; };
   std::sort(all.begin(), all.end(), [&](const ref& x, const ref& y) {
@@ -631,7 +649,7 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       clock = now;
       return s;
     };
-    auto pl = plan_round(cells, b, bound, o.threads, size, D == 3 ? o.sliver_angle : 0.0, &l, &todo);
+    auto pl = plan_round(cells, b, bound, o.threads, size, D == 3 ? o.sliver_angle : 0.0, &l, &todo, o.acute_guard);
     st.plan_seconds += lap();
     st.outside += pl.outside;
     st.bad_left = pl.bad;
@@ -679,10 +697,10 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
 
 template plan<2> plan_round<2>(const cells_by_region<2>&, const conformer::boundary<2>&, double, unsigned,
                                const std::function<double(const point2&)>&, double, const conformer::labelling*,
-                               std::vector<std::vector<char>>*);
+                               std::vector<std::vector<char>>*, double);
 template plan<3> plan_round<3>(const cells_by_region<3>&, const conformer::boundary<3>&, double, unsigned,
                                const std::function<double(const point3&)>&, double, const conformer::labelling*,
-                               std::vector<std::vector<char>>*);
+                               std::vector<std::vector<char>>*, double);
 template bool remesh_cavities<2>(const conformer::boundary<2>&, const conformer::boundary<2>&, const conformer::labelling&,
                                  const conformer::labelling&, cells_by_region<2>&, unsigned, std::size_t*, std::size_t*,
                                  std::vector<std::vector<char>>*);

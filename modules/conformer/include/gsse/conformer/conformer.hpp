@@ -53,6 +53,9 @@ struct boundary {
   std::size_t plc_points = 0, volume_points = 0;  // the first points are the PLC's, then volume ones
   std::size_t steiner = 0;                        // boundary points inserted
   std::size_t rounds = 0;
+  // 3D: per PLC point, the radius of its protecting ball (an acute vertex: no point is inserted
+  // inside, shells go on outside), 0 for none; empty in 2D
+  std::vector<double> protect;
 };
 
 /// Conforms the PLC's boundary with respect to itself and `volume` points (which are kept as

@@ -41,6 +41,10 @@ struct options {
   // triangle of side h; 3D the same bound) is refined too, whatever its shape. Empty: shape only
   std::function<double(const point2&)> size2;
   std::function<double(const point3&)> size3;
+  // 3D small input angles: a bad element whose circumcentre lies within acute_guard x the
+  // protecting ball of an acute PLC vertex (the conformer's; shells about it) is excepted: left
+  // as it is and counted (stats::excepted). 0: none
+  double acute_guard = 2;
   unsigned threads = 1;
   std::function<void(const std::string&)> progress;  // one line per round, may be empty
 };
@@ -88,7 +92,8 @@ struct plan {
 template <std::size_t D>
 plan<D> plan_round(const cells_by_region<D>& cells, const conformer::boundary<D>& b, double ratio_bound, unsigned threads,
                    const std::function<double(const point<D>&)>& size = {}, double sliver_angle = 0,
-                   const conformer::labelling* labels = nullptr, std::vector<std::vector<char>>* todo = nullptr);
+                   const conformer::labelling* labels = nullptr, std::vector<std::vector<char>>* todo = nullptr,
+                   double acute_guard = 0);
 
 /// How the refinement meshes (the pipeline's mesh_segments::wrap and ::assemble): every region of
 /// a labelled boundary from scratch (the first mesh, and the fallback when a round's cavities do
