@@ -152,7 +152,7 @@ std::pair<double, double> dihedral_range(const std::vector<point3>& p, const std
 template <std::size_t D>
 plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary<D>& b, double bound, unsigned threads,
                    const std::function<double(const point<D>&)>& size, double sliver, const conformer::labelling* l,
-                   std::vector<std::vector<char>>* todo, double protect_factor) {
+                   std::vector<std::vector<char>>* todo, double acute_guard) {
   plan<D> out;
   const auto& bp = b.points;
   std::vector<sizing::aabb<D>> boxes(b.faces.size());
@@ -177,10 +177,10 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   std::vector<std::size_t> ids(chunks.size());
   std::iota(ids.begin(), ids.end(), std::size_t{0});
   const auto& p = b.points;
-  // 3D acute vertices: their protecting balls (conformer), grown by protect_factor
+  // 3D acute vertices: their protecting balls (conformer), grown by acute_guard
   std::vector<std::pair<point<D>, double>> guarded;
   for (std::size_t v = 0; v < b.protect.size() && v < p.size(); ++v)
-    if (b.protect[v] > 0) guarded.push_back({p[v], protect_factor * b.protect[v]});
+    if (b.protect[v] > 0) guarded.push_back({p[v], acute_guard * b.protect[v]});
   std::vector<std::size_t> excepted(chunks.size(), 0);
   auto near_acute = [&](const point<D>& x) {
     for (const auto& [c, r] : guarded)
@@ -211,6 +211,12 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
         if (flag) flag[ci] = 0;  // good, and a cell never changes: not looked at again
         continue;
       }
+      if (bad_shape && !guarded.empty() && near_acute(at)) {
+        // small input angle (3D): a bad element whose circumcentre falls near an acute vertex is
+        // excepted (left, counted): refining there makes the conformer go one shell deeper each round
+        ++excepted[k];
+        continue;
+      }
       if (D == 2 && bad_shape) {
         // Ungor's off-centre: on the shortest edge's bisector, no farther from it than the apex
         // of the triangle on that edge with the bound's angle (so that triangle is not bad), if
@@ -237,13 +243,6 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
                    return true;
                  });
       x.count = static_cast<std::uint32_t>(faces[k].size()) - x.first;
-      if (bad_shape && !guarded.empty() && near_acute(at)) {
-        // small input angle: a bad element whose point falls near an acute vertex is excepted
-        // (left, counted): refining there makes the conformer go one shell deeper each round
-        faces[k].resize(x.first);
-        ++excepted[k];
-        continue;
-      }
       found[k].push_back(x);
     }
   }, [&](std::size_t k) { return static_cast<double>(chunks[k].cells.size()); });
@@ -672,18 +671,18 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       st.conform_seconds += lap();
       auto l2 = conformer::label(b2, p, o.threads);
       st.label_seconds += lap();
-      auto c2 = cells;
-      auto t2 = todo;
+      // remesh_cavities changes cells and todo only when it succeeds, and a full meshing that
+      // throws assigns nothing: the last good mesh survives a failed round without a copy
       std::size_t removed = 0, made = 0;
-      if (remesh_cavities(b, b2, l, l2, c2, o.threads, &removed, &made, &t2)) {
+      if (remesh_cavities(b, b2, l, l2, cells, o.threads, &removed, &made, &todo)) {
         st.cavity_cells += removed, st.cavity_made += made;
       } else {
-        c2 = mesh.wrap(b2, l2);
-        t2 = all_todo(c2);
+        cells = mesh.wrap(b2, l2);
+        todo = all_todo(cells);
         ++st.full_remeshes;
       }
       st.mesh_seconds += lap();
-      b = std::move(b2), l = std::move(l2), cells = std::move(c2), todo = std::move(t2);
+      b = std::move(b2), l = std::move(l2);
     } catch (const std::exception& e) {
       st.failure = "round " + std::to_string(st.rounds) + ": " + e.what();
       --st.rounds;
