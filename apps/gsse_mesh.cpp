@@ -222,6 +222,17 @@ int run(const gsse::plc<D>& p, const args& a) {
       std::printf("  refinement: %s after %zu rounds, %zu circumcentres inserted, %zu boundary faces split;\n"
                   "           %zu elements left above the bound\n",
                   st.converged ? "converged" : "stopped", st.rounds, st.inserted, st.split_requests, st.bad_left);
+      if (st.excepted) {
+        std::printf("           of those, %zu excepted at small input angles:", st.excepted);
+        for (std::size_t k = 0; k < st.excepted_near.size() && k < 4; ++k) {
+          const auto& x = d.points()[st.excepted_near[k].first];
+          std::printf("%s %zu near the input point (%g", k ? "," : "", st.excepted_near[k].second, x[0]);
+          for (std::size_t j = 1; j < D; ++j) std::printf(", %g", x[j]);
+          std::printf(")");
+        }
+        if (st.excepted_near.size() > 4) std::printf(" and %zu more points (--stats lists all)", st.excepted_near.size() - 4);
+        std::printf("\n");
+      }
       if (!st.failure.empty()) std::printf("           stopped by a failed %s (the mesh is the round before)\n", st.failure.c_str());
     }
     for (const auto& t : r.times) std::printf("  %-8s %8.3f s\n", t.stage.c_str(), t.seconds);
@@ -246,16 +257,24 @@ int run(const gsse::plc<D>& p, const args& a) {
     for (std::size_t k = 0; k < q.angle_histogram.size(); ++k) js << (k ? ", " : "") << q.angle_histogram[k];
     js << "]}, \"uniform_size\": " << (r.uniform_size ? "true" : "false")
        << ", \"min_size\": " << r.min_size;
-    if (r.quality)
+    if (r.quality) {
       js << ", \"refinement\": {\"bound\": " << gsse::refinement::ratio_bound(D, a.quality_bound) << ", \"converged\": "
          << (r.refinement.converged ? "true" : "false") << ", \"rounds\": " << r.refinement.rounds
          << ", \"inserted\": " << r.refinement.inserted << ", \"boundary_splits\": " << r.refinement.split_requests
-         << ", \"above_bound\": " << r.refinement.bad_left << ", \"excepted\": " << r.refinement.excepted
+         << ", \"above_bound\": " << r.refinement.bad_left << ", \"excepted\": " << r.refinement.excepted << ", \"excepted_near\": [";
+      for (std::size_t k = 0; k < r.refinement.excepted_near.size(); ++k) {
+        const auto& x = d.points()[r.refinement.excepted_near[k].first];
+        js << (k ? ", " : "") << "{\"point\": " << r.refinement.excepted_near[k].first << ", \"at\": [" << x[0];
+        for (std::size_t j = 1; j < D; ++j) js << ", " << x[j];
+        js << "], \"elements\": " << r.refinement.excepted_near[k].second << "}";
+      }
+      js << "]"
          << ", \"sliver_angle\": " << (D == 3 ? a.sliver_angle : 0.0) << ", \"failed\": " << (r.refinement.failure.empty() ? "false" : "true")
          << ", \"seconds\": {\"plan\": " << r.refinement.plan_seconds << ", \"conform\": " << r.refinement.conform_seconds
          << ", \"label\": " << r.refinement.label_seconds << ", \"mesh\": " << r.refinement.mesh_seconds << "}"
          << ", \"cavity_cells\": " << r.refinement.cavity_cells << ", \"cavity_made\": " << r.refinement.cavity_made
          << ", \"full_remeshes\": " << r.refinement.full_remeshes << "}";
+    }
     js << "}";
     js << ", \"verified\": " << (a.verify ? "true" : "null") << "}\n";
   }

@@ -14,8 +14,8 @@
 #include "gsse/io/node_ele.hpp"
 #include "gsse/io/poly.hpp"
 #include "gsse/io/sidecar.hpp"
-#include "gsse/io/surface.hpp"
 #include "gsse/io/vtu.hpp"
+#include "gsse/io/surface.hpp"
 #include "io_test_util.hpp"
 
 using namespace gsse;
@@ -241,6 +241,87 @@ BOOST_AUTO_TEST_CASE(vtu_structure) {
   }
   BOOST_TEST(at == end);
   BOOST_TEST(blocks == 8u);  // potential, segment, volume, flag, points, connectivity, offsets, types
+}
+
+// read_vtu reads back what write_vtu writes (appended raw data, UInt64 headers): the points, every
+// segment's cells in order, and a point quantity, value for value.
+BOOST_AUTO_TEST_CASE(vtu_read_back) {
+  test::scratch_dir dir("rt_vtu_read");
+  auto d = finalized(sample<3>());
+  auto& s0 = d.segments()[0];
+  auto phi = add_quantity<double>(s0, on_vertices, "potential", 1.5);
+  for (std::size_t v = 0; v < d.points().size(); ++v) values(s0, phi)[v] = 0.25 * static_cast<double>(v) - 3;
+  io::write_vtu(d, dir.file("m.vtu"));
+  const io::vtu_grid g = io::read_vtu(dir.file("m.vtu"));
+  BOOST_TEST_REQUIRE(g.points.size() == d.points().size());
+  for (std::size_t v = 0; v < g.points.size(); ++v)
+    for (std::size_t k = 0; k < 3; ++k) BOOST_TEST(g.points[v][k] == d.points()[v][k]);
+  std::size_t c = 0;
+  for (const auto& s : d.segments())
+    for (const auto& cell : s.cell_data()) {
+      BOOST_TEST_REQUIRE(c < g.cell_types.size());
+      BOOST_TEST(g.cell_types[c] == 10);
+      BOOST_TEST_REQUIRE(g.cell_start[c + 1] - g.cell_start[c] == cell.size());
+      for (std::size_t k = 0; k < cell.size(); ++k) BOOST_TEST(g.connectivity[g.cell_start[c] + k] == static_cast<std::size_t>(cell[k]));
+      ++c;
+    }
+  BOOST_TEST(c == g.cell_types.size());
+  const auto* a = g.point_array(s0.name() + "/potential");
+  BOOST_TEST_REQUIRE(a != nullptr);
+  BOOST_TEST(a->components == 1u);
+  for (std::size_t v = 0; v < d.points().size(); ++v) BOOST_TEST(a->values[v] == values(s0, phi)[v]);
+}
+
+// Every way a .vtu can be wrong gives an io_error naming the file and the line of the element at
+// fault, never a crash: each case is a small hand-written file.
+BOOST_AUTO_TEST_CASE(vtu_read_errors) {
+  test::scratch_dir dir("rt_vtu_bad");
+  const std::string head = "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n<UnstructuredGrid>\n";
+  const std::string pts = "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n0 0 0 1 0 0 0 1 0 0 0 1\n</DataArray>\n</Points>\n";
+  auto cells = [](const std::string& conn) {
+    return "<Cells>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">" + conn +
+           "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">4</DataArray>\n"
+           "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">10</DataArray>\n</Cells>\n";
+  };
+  const std::string piece = "<Piece NumberOfPoints=\"4\" NumberOfCells=\"1\">\n";
+  const std::string tail = "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  // a good one first: the cases below differ from it in one place
+  const auto good = dir.write("good.vtu", head + piece + pts + cells("0 1 2 3") + tail);
+  const auto g = io::read_vtu(good);
+  BOOST_TEST(g.points.size() == 4u);
+  BOOST_TEST(g.connectivity.size() == 4u);
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {head + piece + pts + cells("0 1 2 4") + tail, ":11: connectivity entry 3 (4) is not a point"},  // index out of range
+      {head + piece + pts + cells("0 1 2") + tail, ":12: offset 4 of cell 0 is not a non-decreasing index"},
+      {head + piece + pts + cells("0 1 x 3") + tail, ":11: 'x'"},
+      {head + "<Piece NumberOfPoints=\"5\" NumberOfCells=\"1\">\n" + pts + cells("0 1 2 3") + tail, ":6: 12 coordinates for 5 points"},
+      {head + piece + "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n0 0 0 1 0 0 0 1 0 0 0 nan\n</DataArray>\n</Points>\n" +
+           cells("0 1 2 3") + tail,
+       ":6: point 3 has a non-finite coordinate"},
+      {"<VTKFile type=\"PolyData\">\n</VTKFile>\n", ":1: a VTK XML file of type 'PolyData'"},
+      {"<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" compressor=\"vtkLZ4DataCompressor\">\n", ":2: compressor 'vtkLZ4DataCompressor'"},
+      {head + piece + pts + cells("0 1 2 3"), "not closed"},
+      {head + piece + "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"binary\">\nAAAA\n</DataArray>\n</Points>\n" + cells("0 1 2 3") + tail,
+       ":6: the data of DataArray '' end"},
+      {head + piece + "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"0\"/>\n</Points>\n" + cells("0 1 2 3") + tail,
+       ":6: an appended DataArray but no <AppendedData>"},
+      {head + piece + "<Points>\n<DataArray type=\"Float128\" NumberOfComponents=\"3\" format=\"ascii\">0</DataArray>\n</Points>\n" + cells("0 1 2 3") + tail,
+       ":6: DataArray type 'Float128'"},
+      {"solid x\nendsolid x\n", ":1: no <VTKFile> element"},
+  };
+  int k = 0;
+  for (const auto& [text, want] : cases) {
+    const auto f = dir.write("bad" + std::to_string(k++) + ".vtu", text);
+    try {
+      (void)io::read_vtu(f);
+      BOOST_ERROR("no error for case " << k << ", expected " << want);
+    } catch (const io::io_error& e) {
+      const std::string w = e.what();
+      BOOST_TEST(w.find(f) == 0u, w);
+      BOOST_TEST(w.find(want) != std::string::npos, "case " << k << ": '" << w << "' lacks '" << want << "'");
+    }
+  }
+  BOOST_CHECK_THROW(io::read_vtu(dir.file("missing.vtu")), io::io_error);
 }
 
 BOOST_AUTO_TEST_CASE(tetgen_poly_with_polygons_holes_markers_regions) {

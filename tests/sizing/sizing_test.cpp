@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <random>
 #include <set>
@@ -227,6 +228,99 @@ BOOST_AUTO_TEST_CASE(background_size_field_is_obeyed) {
   } catch (const std::exception& e) {
     BOOST_TEST(std::string(e.what()).find("bg.mtr:1:") != std::string::npos, e.what());
   }
+  std::filesystem::remove_all(dir);
+}
+
+// A .vtu background (tests/sizing/data, written by meshio: make_background_vtu.py) in each encoding
+// meshio writes (ascii; base64 zlib-compressed with UInt32 headers, its default; base64
+// uncompressed with UInt64 headers): the field is the linear interpolation of the point array
+// "size", the surface triangle beside the tetrahedra is skipped, the sidecar finds the file
+// relative to itself; 2D (triangles, z = 0) too. Hexahedra, a missing "size" array and a
+// corrupt compressed block are errors naming the file and line.
+BOOST_AUTO_TEST_CASE(background_vtu_in_every_encoding) {
+  const std::filesystem::path data = std::filesystem::path(GSSE_SOURCE_DIR) / "tests/sizing/data";
+  auto hb = [](double x) { return 0.003 + 0.2 * (x + 0.01); };
+  std::mt19937 g(11);
+  std::uniform_real_distribution<double> u(-0.01, 0.05);
+  const std::vector<point3> pts{{0, 0, 0}, {1, 0, 0}};
+  const std::vector<std::array<vertex_id, 3>> faces;
+  for (const char* f : {"bg_ascii.vtu", "bg_zlib.vtu", "bg_raw64.vtu"}) {
+    const auto B = sizing::read_background<3>((data / f).string());
+    BOOST_TEST(B->cells.size() == 6u, f);
+    BOOST_TEST(B->size.size() == 8u, f);
+    sizing::spec<3> s;
+    s.feature_size = false;
+    s.background = B;
+    const sizing::size_field<3> h = sizing::build<3>({pts, 2, faces, {}, {}, "none"}, s);
+    for (int i = 0; i < 50; ++i) {
+      const point3 x{u(g), u(g), u(g)};
+      BOOST_TEST(std::abs(h(x) - hb(x[0])) < 1e-12, f << " at " << x[0] << " " << x[1] << " " << x[2]);
+    }
+    BOOST_TEST(std::isinf(h(point3{0.2, 0, 0})));
+  }
+  {
+    const auto B = sizing::read_background<2>((data / "bg_2d.vtu").string());
+    BOOST_TEST(B->cells.size() == 2u);
+    sizing::spec<2> s;
+    s.feature_size = false;
+    s.background = B;
+    const std::vector<point2> p2{{0, 0}, {1, 0}};
+    const std::vector<std::array<vertex_id, 2>> f2;
+    const sizing::size_field<2> h = sizing::build<2>({p2, 2, f2, {}, {}, "none"}, s);
+    for (int i = 0; i < 50; ++i) {
+      const point2 x{u(g), u(g)};
+      BOOST_TEST(std::abs(h(x) - hb(x[0])) < 1e-12);
+    }
+  }
+  // through the sidecar, relative to its folder
+  const auto dir = std::filesystem::temp_directory_path() / "gsse_sizing_vtu";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(data / "bg_zlib.vtu", dir / "bg.vtu");
+  const auto json = (dir / "s.json").string();
+  {
+    std::ofstream o(json);
+    o << "{\"background\": \"bg.vtu\"}\n";
+  }
+  sizing::spec<3> s;
+  sizing::add_sidecar(s, io::read_sidecar(json).sizing, stack(0.04, {0, 0.04}), json);
+  BOOST_TEST_REQUIRE(s.background != nullptr);
+  BOOST_TEST(s.background->cells.size() == 6u);
+  // errors
+  auto expect_error = [&](const std::string& file, const std::string& want) {
+    try {
+      (void)sizing::read_background<3>(file);
+      BOOST_ERROR("no error for " << file);
+    } catch (const io::io_error& e) {
+      const std::string w = e.what();
+      BOOST_TEST(w.find(file + ":") == 0u, w);
+      BOOST_TEST(w.find(want) != std::string::npos, "'" << w << "' lacks '" << want << "'");
+    }
+  };
+  expect_error((data / "bg_hex.vtu").string(), "is a hexahedron (VTK type 12)");
+  auto rewrite = [&](const char* from, const std::string& to, auto edit) {
+    std::ifstream in(data / from);
+    std::string t((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    edit(t);
+    std::ofstream(dir / to) << t;
+    return (dir / to).string();
+  };
+  expect_error(rewrite("bg_ascii.vtu", "noname.vtu", [](std::string& t) { t.replace(t.find("Name=\"size\""), 11, "Name=\"h\""); }),
+               "no point data array 'size' (point arrays: h, other)");
+  // a compressed block cut short inside its data: the size array's base64 loses its last quantum
+  expect_error(rewrite("bg_zlib.vtu", "cut.vtu",
+                       [](std::string& t) {
+                         const auto at = t.find("Name=\"size\"");
+                         const auto end = t.find("\n</DataArray>", at);
+                         t.erase(end - 4, 4);
+                       }),
+               "of DataArray 'size'");
+  expect_error(rewrite("bg_ascii.vtu", "negative.vtu",
+                       [](std::string& t) {
+                         const auto at = t.find('>', t.find("Name=\"size\"")) + 1;
+                         t.insert(t.find_first_not_of(" \n", at), "-");
+                       }),
+               "the size of point 0 must be positive");
   std::filesystem::remove_all(dir);
 }
 

@@ -598,6 +598,8 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     refinement::options ro;
     ro.bound = o.quality_bound;
     ro.sliver_angle = o.sliver_angle;
+    ro.acute_guard = o.acute_guard;
+    ro.max_rounds = o.quality_rounds;
     ro.threads = o.threads;
     ro.progress = o.progress;
     if (refined_interior) {

@@ -178,14 +178,20 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   std::iota(ids.begin(), ids.end(), std::size_t{0});
   const auto& p = b.points;
   // 3D acute vertices: their protecting balls (conformer), grown by acute_guard
-  std::vector<std::pair<point<D>, double>> guarded;
+  struct guard {
+    point<D> at;
+    double r;
+    vertex_id v;
+  };
+  std::vector<guard> guarded;
   for (std::size_t v = 0; v < b.protect.size() && v < p.size(); ++v)
-    if (b.protect[v] > 0) guarded.push_back({p[v], acute_guard * b.protect[v]});
-  std::vector<std::size_t> excepted(chunks.size(), 0);
-  auto near_acute = [&](const point<D>& x) {
-    for (const auto& [c, r] : guarded)
-      if (squared_distance(x, c) < r * r) return true;
-    return false;
+    if (b.protect[v] > 0) guarded.push_back({p[v], acute_guard * b.protect[v], static_cast<vertex_id>(v)});
+  // per chunk, per guarded vertex (index into guarded): elements excepted about it
+  std::vector<std::vector<std::size_t>> excepted(chunks.size());
+  auto near_acute = [&](const point<D>& x) -> std::size_t {  // the first guard holding x, or none
+    for (std::size_t g = 0; g < guarded.size(); ++g)
+      if (squared_distance(x, guarded[g].at) < guarded[g].r * guarded[g].r) return g;
+    return guarded.size();
   };
   for_each(execution::par(threads), ids, [&](std::size_t k) {
     char* flag = chunks[k].todo;
@@ -211,11 +217,14 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
         if (flag) flag[ci] = 0;  // good, and a cell never changes: not looked at again
         continue;
       }
-      if (bad_shape && !guarded.empty() && near_acute(at)) {
+      if (bad_shape && !guarded.empty()) {
         // small input angle (3D): a bad element whose circumcentre falls near an acute vertex is
         // excepted (left, counted): refining there makes the conformer go one shell deeper each round
-        ++excepted[k];
-        continue;
+        if (const std::size_t g = near_acute(at); g < guarded.size()) {
+          if (excepted[k].empty()) excepted[k].assign(guarded.size(), 0);
+          ++excepted[k][g];
+          continue;
+        }
       }
       if (D == 2 && bad_shape) {
         // Ungor's off-centre: on the shortest edge's bisector, no farther from it than the apex
@@ -258,9 +267,14 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       all.push_back({k, i});
       if (found[k][i].count == 0) levels.insert(accepted_points<D>::level(found[k][i].r));
     }
-  out.excepted = std::accumulate(excepted.begin(), excepted.end(), std::size_t{0});
-  out.bad = out.excepted + static_cast<std::size_t>(std::count_if(all.begin(), all.end(), [&](const ref& x) { return found[x.chunk][x.index].shape; }));
-  out.large = all.size() - out.bad;
+  for (std::size_t g = 0; g < guarded.size(); ++g) {
+    std::size_t n = 0;
+    for (const auto& e : excepted) n += e.empty() ? 0 : e[g];
+    if (n) out.excepted_near.push_back({guarded[g].v, n}), out.excepted += n;
+  }
+  const auto shaped = static_cast<std::size_t>(std::count_if(all.begin(), all.end(), [&](const ref& x) { return found[x.chunk][x.index].shape; }));
+  out.bad = out.excepted + shaped;
+  out.large = all.size() - shaped;  // the excepted are not in `all`
   auto at = [&](const ref& x) -> const candidate<D>& { return found[x.chunk][x.index]; };
   std::sort(all.begin(), all.end(), [&](const ref& x, const ref& y) {
     const auto &a = at(x), &c = at(y);
@@ -653,6 +667,7 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     st.outside += pl.outside;
     st.bad_left = pl.bad;
     st.excepted = pl.excepted;
+    st.excepted_near = pl.excepted_near;
     if (pl.bad == pl.excepted && pl.large == 0) {
       st.converged = true;
       break;

@@ -1,16 +1,90 @@
 #include "gsse/sizing/inputs.hpp"
 
 #include <charconv>
+#include <cmath>
 
 #include <filesystem>
 
 #include "gsse/io/node_ele.hpp"
 #include "gsse/io/text_reader.hpp"
+#include "gsse/io/vtu.hpp"
 
 namespace gsse::sizing {
 
+namespace {
+
+// A .vtu background: its tetrahedra (2D: triangles, z ignored) and the point array "size".
+template <std::size_t D>
+std::shared_ptr<const typename spec<D>::background_mesh> read_background_vtu(const std::string& path) {
+  const io::vtu_grid g = io::read_vtu(path);
+  auto B = std::make_shared<typename spec<D>::background_mesh>();
+  B->source = path;
+  B->points.reserve(g.points.size());
+  for (const auto& x : g.points) {
+    point<D> p;
+    for (std::size_t k = 0; k < D; ++k) p[k] = x[k];
+    B->points.push_back(p);
+  }
+  // VTK cell types: the simplices used, the lower-dimensional ones skipped, other cells of the
+  // mesh's dimension refused (a background must be simplicial to interpolate linearly)
+  const std::uint8_t simplex = D == 3 ? 10 : 5;
+  auto volume_type = [](std::uint8_t t) -> const char* {
+    if constexpr (D == 3) {
+      switch (t) {
+        case 11: return "voxel";
+        case 12: return "hexahedron";
+        case 13: return "wedge";
+        case 14: return "pyramid";
+        case 24: return "quadratic tetrahedron";
+        case 25: return "quadratic hexahedron";
+        case 42: return "polyhedron";
+        default: return nullptr;
+      }
+    } else {
+      switch (t) {
+        case 6: return "triangle strip";
+        case 7: return "polygon";
+        case 8: return "pixel";
+        case 9: return "quadrilateral";
+        case 22: return "quadratic triangle";
+        default: return nullptr;
+      }
+    }
+  };
+  for (std::size_t c = 0; c < g.cell_types.size(); ++c) {
+    const std::uint8_t t = g.cell_types[c];
+    if (t == simplex) {
+      if (g.cell_start[c + 1] - g.cell_start[c] != D + 1)
+        throw io::io_error(path, g.cells_line, "cell " + std::to_string(c) + " has " + std::to_string(g.cell_start[c + 1] - g.cell_start[c]) + " vertices for its type");
+      std::array<vertex_id, D + 1> s;
+      for (std::size_t k = 0; k <= D; ++k) s[k] = static_cast<vertex_id>(g.connectivity[g.cell_start[c] + k]);
+      B->cells.push_back(s);
+    } else if (const char* what = volume_type(t)) {
+      throw io::io_error(path, g.cells_line, "cell " + std::to_string(c) + " is a " + what + " (VTK type " + std::to_string(t) + "); a " + std::to_string(D) +
+                                                 "D background mesh must be made of " + (D == 3 ? "tetrahedra" : "triangles"));
+    }
+  }
+  if (B->cells.empty())
+    throw io::io_error(path, g.cells_line ? g.cells_line : 1, std::string("no ") + (D == 3 ? "tetrahedra" : "triangles") + " in the background mesh");
+  const io::vtu_grid::array* h = g.point_array("size");
+  if (!h) {
+    std::string names;
+    for (const auto& a : g.point_data) names += (names.empty() ? "" : ", ") + a.name;
+    throw io::io_error(path, 1, "no point data array 'size' (point arrays: " + (names.empty() ? std::string("none") : names) + ")");
+  }
+  if (h->components != 1) throw io::io_error(path, h->line, "point data 'size' has " + std::to_string(h->components) + " components (one size per point)");
+  for (std::size_t i = 0; i < h->values.size(); ++i)
+    if (!(h->values[i] > 0) || !std::isfinite(h->values[i]))
+      throw io::io_error(path, h->line, "the size of point " + std::to_string(i) + " must be positive and finite (it is " + std::to_string(h->values[i]) + ")");
+  B->size = h->values;
+  return B;
+}
+
+}  // namespace
+
 template <std::size_t D>
 std::shared_ptr<const typename spec<D>::background_mesh> read_background(const std::string& path) {
+  if (path.size() > 4 && path.compare(path.size() - 4, 4, ".vtu") == 0) return read_background_vtu<D>(path);
   std::string base = path;
   for (const char* e : {".node", ".ele", ".mtr"}) {
     const std::string ext = e;

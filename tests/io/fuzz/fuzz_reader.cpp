@@ -16,6 +16,7 @@
 #include "gsse/io/poly.hpp"
 #include "gsse/io/sidecar.hpp"
 #include "gsse/io/surface.hpp"
+#include "gsse/io/vtu.hpp"
 
 #ifndef GSSE_FUZZ_READER
 #error "define GSSE_FUZZ_READER"
@@ -61,6 +62,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
     } else if (reader == "msh_plc") {  // a surface mesh read as a PLC, with its volumes
       std::vector<gsse::io::plc_volume> volumes;
       (void)gsse::io::read_plc(put("in.msh", data, size), &volumes);
+    } else if (reader == "vtu") {
+      (void)gsse::io::read_vtu(put("in.vtu", data, size));
     } else if (reader == "sidecar") {
       (void)gsse::io::read_sidecar(put("in.json", data, size));
     } else if (reader == "node_ele") {

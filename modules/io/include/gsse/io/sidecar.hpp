@@ -9,7 +9,7 @@
 //   "sizes": {"oxide": 0.002, "3": 0.1}          maximum size per segment (name or number)
 //   "refine": [{"lo": [x, y, z], "hi": [x, y, z], "size": h}]   size inside a box
 //   "interfaces": [{"between": ["oxide", "silicon"], "size": h}]  size on an interface
-//   "background": "bg.node"                       a background mesh BASE.node/.ele/.mtr, relative
+//   "background": "bg.node"                       a background mesh BASE.node/.ele/.mtr or a .vtu, relative
 //                                                 to the sidecar's folder
 //   "grade": 1.3                                  the grading limit (--grade overrides it)
 #include <map>

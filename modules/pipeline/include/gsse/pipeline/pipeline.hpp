@@ -42,6 +42,8 @@ struct options {
   bool quality = false;
   double quality_bound = 0;
   double sliver_angle = refinement::options{}.sliver_angle;  // 3D, with quality: see refinement::options
+  double acute_guard = refinement::options{}.acute_guard;  // 3D, with quality: see refinement::options
+  std::size_t quality_rounds = 0;  // with quality: the round cap (0: refinement::options default)
   unsigned threads = 1;  // threads shared by the stages (0: every hardware thread, execution::thread_count)
   bool verify = false;   // run the library verifier (gsse::verify::check against the input PLC) at the end
   double verify_tolerance = verify::options{}.facet_tolerance;  // the verifier's facet tolerance

@@ -61,6 +61,8 @@ struct stats {
   std::size_t split_requests = 0;  // boundary faces split because a circumcentre encroached them
   std::size_t bad_left = 0;        // elements above the bound at the end (0 when it converged)
   std::size_t excepted = 0;        // of those, at a small input angle (see README)
+  // where: per acute PLC vertex (its index in the PLC's points), the elements excepted about it
+  std::vector<std::pair<vertex_id, std::size_t>> excepted_near;
   std::size_t outside = 0;         // circumcentres left out because they lie outside every segment
   bool converged = false;
   // wall seconds spent in each step, summed over the rounds
@@ -88,6 +90,7 @@ struct plan {
   std::size_t large = 0;           // others too large for the size field (options::size2/3)
   std::size_t outside = 0;         // circumcentres outside every segment, not inserted (labels given)
   std::size_t excepted = 0;        // of those, excepted (small input angle)
+  std::vector<std::pair<vertex_id, std::size_t>> excepted_near;  // per acute PLC vertex, ascending
 };
 template <std::size_t D>
 plan<D> plan_round(const cells_by_region<D>& cells, const conformer::boundary<D>& b, double ratio_bound, unsigned threads,

@@ -10,8 +10,10 @@
 
 namespace gsse::sizing {
 
-/// Reads BASE.node, BASE.ele and BASE.mtr (`path` is BASE or any of the three). Errors name the
-/// file and line: a missing file, a count that does not match the nodes, a size that is not
+/// Reads a background size mesh: a .vtu (tetrahedra, 2D: triangles in the xy plane, with the point
+/// array "size"; other cells of lower dimension are skipped, hexahedra and the like refused), or
+/// BASE.node, BASE.ele and BASE.mtr (`path` is BASE or any of the three). Errors name the file and
+/// line: a missing file or array, a count that does not match the nodes, a size that is not
 /// positive.
 template <std::size_t D>
 std::shared_ptr<const typename spec<D>::background_mesh> read_background(const std::string& path);
