@@ -199,6 +199,68 @@ BOOST_AUTO_TEST_CASE(acute_vertex_exception) {
   }
 }
 
+// Small input angles (2D): a 5-degree wedge (turned, with a box around it). Every triangle left
+// below the angle bound is excepted by Shewchuk's rule (its shortest edge joins the two wedge
+// edges on one concentric shell about the apex): each spans the wedge; the mesh verified.
+// Without the exception the refinement splits toward the apex until double precision runs out
+// (a failed round, measured: round 32) and the mesh before it does not verify.
+BOOST_AUTO_TEST_CASE(small_angle_exception_2d) {
+  const double a = 5 * std::numbers::pi / 180, t = 0.3;
+  auto rot = [&](point2 q) { return point2{q[0] * std::cos(t) - q[1] * std::sin(t), q[0] * std::sin(t) + q[1] * std::cos(t)}; };
+  plc<2> p;
+  p.source = "wedge";
+  p.points = {rot({0, 0}), rot({1, 0}), rot({std::cos(a), std::sin(a)}), rot({-0.5, -0.5}), rot({1.5, -0.5}), rot({1.5, 1.2}), rot({-0.5, 1.2})};
+  p.edges = {{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 6}, {6, 3}};
+  p.edge_markers.assign(p.edges.size(), 0);
+  p.regions.push_back({rot({0.9, 0.9 * std::sin(a / 2) / 2}), 1, -1, "wedge"});
+  p.regions.push_back({rot({-0.2, -0.2}), 2, -1, "box"});
+  for (double angle : {20.7, 33.0})
+    for (double size : {0.0, 0.05}) {
+      pl::report r;
+      const auto d = refined(p, angle, 2, r, size);
+      BOOST_TEST(r.refinement.converged, angle << " " << size << ": " << r.refinement.bad_left << " left, " << r.refinement.failure);
+      BOOST_TEST(r.refinement.excepted > 0u);
+      BOOST_TEST(r.refinement.bad_left == r.refinement.excepted);
+      BOOST_TEST_REQUIRE(r.refinement.excepted_near.size() == 1u);
+      BOOST_TEST(r.refinement.excepted_near[0].first == 0u);  // the apex
+      // the triangles below the bound: the excepted ones, each with a vertex near the apex
+      const auto& P = d.points();
+      std::size_t small = 0, far = 0;  // far: below the bound but not spanning the wedge
+      for (const auto& sg : d.segments())
+        for (const auto& c : sg.cell_data()) {
+          double lo = 180;
+          for (int i = 0; i < 3; ++i) {
+            const point2 u = P[c[(i + 1) % 3]] - P[c[i]], v = P[c[(i + 2) % 3]] - P[c[i]];
+            lo = std::min(lo, std::atan2(std::abs(u[0] * v[1] - u[1] * v[0]), u[0] * v[0] + u[1] * v[1]) * 180 / std::numbers::pi);
+          }
+          if (lo >= angle - 1e-6) continue;
+          ++small;
+          // two of its vertices on the wedge's two edges (within 1e-12 of each line)
+          auto on = [&](const point2& x, const point2& e) {
+            const point2 u = e - P[0], w = x - P[0];
+            return std::abs(u[0] * w[1] - u[1] * w[0]) / std::sqrt(u[0] * u[0] + u[1] * u[1]) < 1e-12 && u[0] * w[0] + u[1] * w[1] > 0;
+          };
+          bool first = false, second = false;
+          for (auto v : c) first |= v != 0 && on(P[v], P[1]), second |= v != 0 && on(P[v], P[2]);
+          far += !(first && second);
+        }
+      BOOST_TEST(small == r.refinement.excepted, angle << " " << size << ": " << small << " below the bound");
+      BOOST_TEST(far == 0u, far << " triangles below the bound do not span the wedge");
+    }
+  // without the exception
+  pl::options o;
+  o.graded = true;
+  o.quality = true;
+  o.quality_bound = 20.7;
+  o.verify = true;
+  o.threads = 2;
+  o.acute_guard = 0;
+  pl::report r0;
+  (void)pl::mesh(p, {}, o, r0);
+  BOOST_TEST(!r0.refinement.converged);
+  BOOST_TEST(!r0.refinement.failure.empty(), "the refinement without the exception ran " << r0.refinement.rounds << " rounds");
+}
+
 // The same points and cells for 1 and 2 threads.
 BOOST_AUTO_TEST_CASE(deterministic_for_any_thread_count) {
   pl::report r1, r2;

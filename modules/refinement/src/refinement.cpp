@@ -186,6 +186,59 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   std::vector<guard> guarded;
   for (std::size_t v = 0; v < b.protect.size() && v < p.size(); ++v)
     if (b.protect[v] > 0) guarded.push_back({p[v], acute_guard * b.protect[v], static_cast<vertex_id>(v)});
+  // 2D small input angles (Shewchuk's rule, as Triangle applies it): a bad triangle whose
+  // shortest edge joins two points on the same concentric shell about an input vertex where
+  // their two input edges meet at less than 60 degrees is excepted: splitting it would only
+  // make the conformer's next, smaller shell. ends[e]: the PLC vertices that end input edge e;
+  // guard_of[v]: v's index in guarded (an acute vertex), or none.
+  std::vector<std::array<vertex_id, 2>> ends;
+  std::vector<std::uint32_t> guard_of;
+  constexpr std::uint32_t no_guard = ~std::uint32_t{0};
+  if constexpr (D == 2) {
+    if (acute_guard > 0) {
+      std::uint32_t edges = 0;
+      for (auto s : b.face_source) edges = std::max(edges, s + 1);
+      ends.assign(edges, {no_vertex, no_vertex});
+      for (std::size_t f = 0; f < b.faces.size(); ++f)
+        for (vertex_id v : b.faces[f])
+          if (v < b.plc_points) {
+            auto& E = ends[b.face_source[f]];
+            if (E[0] == no_vertex) E[0] = v;
+            else if (E[0] != v) E[1] = v;
+          }
+      // acute vertices: two input edges at less than 60 degrees (doubles: a refinement policy,
+      // not topology)
+      std::vector<std::vector<point<D>>> dirs(b.plc_points);
+      for (const auto& E : ends)
+        if (E[0] != no_vertex && E[1] != no_vertex)
+          for (int k = 0; k < 2; ++k) {
+            const point<D> d = p[E[1 - k]] - p[E[k]];
+            dirs[E[k]].push_back((1 / std::sqrt(squared_distance(p[E[1 - k]], p[E[k]]))) * d);
+          }
+      guard_of.assign(b.plc_points, no_guard);
+      for (std::size_t v = 0; v < b.plc_points; ++v) {
+        bool acute = false;
+        for (std::size_t i = 0; i < dirs[v].size() && !acute; ++i)
+          for (std::size_t j = i + 1; j < dirs[v].size(); ++j)
+            if (dirs[v][i][0] * dirs[v][j][0] + dirs[v][i][1] * dirs[v][j][1] > 0.5) acute = true;
+        if (acute) guard_of[v] = static_cast<std::uint32_t>(guarded.size()), guarded.push_back({p[v], 0, static_cast<vertex_id>(v)});
+      }
+    }
+  }
+  // the acute vertex whose small angle the shortest edge (a, b) subtends (2D), or none
+  auto subtends = [&](vertex_id a, vertex_id c) -> std::uint32_t {
+    const auto& ha = b.homes[a];
+    const auto& hc = b.homes[c];
+    if (ha.kind != conformer::home::edge || hc.kind != conformer::home::edge || ha.id == hc.id) return no_guard;
+    if (ha.id >= ends.size() || hc.id >= ends.size()) return no_guard;
+    for (vertex_id v : ends[ha.id]) {
+      if (v == no_vertex || (v != ends[hc.id][0] && v != ends[hc.id][1]) || guard_of[v] == no_guard) continue;
+      const double da = squared_distance(p[a], p[v]), dc = squared_distance(p[c], p[v]);
+      const double ratio = 1.002001;  // (1.001)^2: the same shell, as Triangle tests it
+      if (da < ratio * dc && dc < ratio * da) return guard_of[v];
+    }
+    return no_guard;
+  };
   // per chunk, per guarded vertex (index into guarded): elements excepted about it
   std::vector<std::vector<std::size_t>> excepted(chunks.size());
   auto near_acute = [&](const point<D>& x) -> std::size_t {  // the first guard holding x, or none
@@ -219,8 +272,15 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       }
       if (bad_shape && !guarded.empty()) {
         // small input angle (3D): a bad element whose circumcentre falls near an acute vertex is
-        // excepted (left, counted): refining there makes the conformer go one shell deeper each round
-        if (const std::size_t g = near_acute(at); g < guarded.size()) {
+        // excepted (left, counted): refining there makes the conformer go one shell deeper each
+        // round; 2D: a bad triangle whose shortest edge subtends a small input angle
+        std::size_t g = guarded.size();
+        if constexpr (D == 2) {
+          if (const auto s = subtends(c[si], c[sj]); s != no_guard) g = s;
+        } else {
+          g = near_acute(at);
+        }
+        if (g < guarded.size()) {
           if (excepted[k].empty()) excepted[k].assign(guarded.size(), 0);
           ++excepted[k][g];
           continue;
