@@ -30,6 +30,7 @@ void usage(std::FILE* to) {
       "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
       "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly] [--msh 4.1|2.2] [--verify-tol R]\n"
       "                 [--grade G] [--no-feature-size] [--quality [B]] [--sliver-angle A]\n"
+      "                 [--acute-guard F]\n"
       "       gsse-mesh INPUT --check MESH [--threads N] [--quiet] [--verify-tol R]\n"
       "  INPUT    TetGen .poly/.smesh (3D), Triangle .poly (2D), or a closed surface: OFF, STL,\n"
       "           Gmsh .msh surface mesh (its volumes become segments)\n"
@@ -48,6 +49,9 @@ void usage(std::FILE* to) {
       "           below B degrees (default 20.7, at most 33); the mesh stays conforming Delaunay\n"
       "  --sliver-angle A  with --quality in 3D: tetrahedra with a dihedral angle below A or above\n"
       "           180 - 2A degrees are refined too (default 5: none below 5 or above 170; 0: off)\n"
+      "  --acute-guard F  with --quality: small input angles excepted (3D: bad elements whose\n"
+      "           circumcentre lies within F times an acute vertex's protecting ball; 2D: any F > 0\n"
+      "           turns on Shewchuk's rule); counted and located in the summary (default 2; 0: off)\n"
       "  --cloud  extra interior points (.node); points outside every segment are dropped\n"
       "  --verify check the mesh against the input (valid, conforming, labelled, Delaunay); if it\n"
       "           fails: exit status 3, no output written (neither -o nor --stats)\n"
@@ -73,6 +77,7 @@ struct args {
   double size = 0, verify_tol = gsse::verify::options{}.facet_tolerance, grade = 0, quality_bound = 0;
   bool quality = false;
   double sliver_angle = gsse::refinement::options{}.sliver_angle;
+  double acute_guard = gsse::refinement::options{}.acute_guard;
   bool no_feature = false;
   unsigned threads = 1;
   bool verify = false, verify_tol_given = false, quiet = false, no_merge = false, msh22 = false;
@@ -117,6 +122,7 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.quality = a.quality;
   o.quality_bound = a.quality_bound;
   o.sliver_angle = a.sliver_angle;
+  o.acute_guard = a.acute_guard;
   if (a.quality) gsse::refinement::ratio_bound(D, a.quality_bound);  // a bound out of range is a usage error
   o.verify_tolerance = a.verify_tol;
   o.conform.max_steiner = a.max_steiner;
@@ -348,6 +354,9 @@ int main(int argc, char** argv) {
             ++i;
           }
         }
+      } else if (s == "--acute-guard") {
+        a.acute_guard = std::stod(value());
+        if (!(a.acute_guard >= 0 && a.acute_guard <= 100)) throw std::invalid_argument("--acute-guard must be in [0, 100]");
       } else if (s == "--sliver-angle") {
         a.sliver_angle = std::stod(value());
         if (!(a.sliver_angle >= 0 && a.sliver_angle < 30)) throw std::invalid_argument("--sliver-angle must be in [0, 30)");

@@ -83,8 +83,8 @@ plc<3> needle(bool rotated) {
   return p;
 }
 
-template <std::size_t D>
-domain<D> refined(const plc<D>& p, double bound, unsigned threads, pl::report& r, double size = 0) {
+/// Graded meshing with --quality `bound`, verified.
+pl::options quality_options(double bound, unsigned threads, double size = 0) {
   pl::options o;
   o.size = size;
   o.graded = true;
@@ -92,7 +92,12 @@ domain<D> refined(const plc<D>& p, double bound, unsigned threads, pl::report& r
   o.quality_bound = bound;
   o.verify = true;
   o.threads = threads;
-  auto d = pl::mesh(p, {}, o, r);
+  return o;
+}
+
+template <std::size_t D>
+domain<D> refined(const plc<D>& p, double bound, unsigned threads, pl::report& r, double size = 0) {
+  auto d = pl::mesh(p, {}, quality_options(bound, threads, size), r);
   BOOST_TEST(r.problems.empty(), p.source << ": " << (r.problems.empty() ? "" : r.problems.front()));
   return d;
 }
@@ -151,12 +156,7 @@ BOOST_AUTO_TEST_CASE(acute_vertex_exception) {
   for (bool rotated : {false, true}) {
     const auto p = needle(rotated);
     const point3 apex = p.points[4];
-    pl::options o;
-    o.graded = true;
-    o.quality = true;
-    o.quality_bound = 2.0;
-    o.verify = true;
-    o.threads = 2;
+    const pl::options o = quality_options(2.0, 2);
     pl::report r;
     const auto d = pl::mesh(p, {}, o, r);
     BOOST_TEST(r.problems.empty(), (r.problems.empty() ? "" : r.problems.front()));
@@ -248,12 +248,7 @@ BOOST_AUTO_TEST_CASE(small_angle_exception_2d) {
       BOOST_TEST(far == 0u, far << " triangles below the bound do not span the wedge");
     }
   // without the exception
-  pl::options o;
-  o.graded = true;
-  o.quality = true;
-  o.quality_bound = 20.7;
-  o.verify = true;
-  o.threads = 2;
+  pl::options o = quality_options(20.7, 2);
   o.acute_guard = 0;
   pl::report r0;
   (void)pl::mesh(p, {}, o, r0);

@@ -140,7 +140,9 @@ class facet_set {
     return std::abs(dot(x - f.corner[0], f.normal)) <= tol_ ? 0 : -1;
   }
 
-  /// -1: x is not on facet f; 0: within the tolerance of its plane and region; +1: exactly on both.
+  /// -1: x is not on facet f; 0: within the tolerance of its plane and in its region; +1: exactly
+  /// on both; 2 (3D): on its plane (within the tolerance) but outside its region, within the
+  /// tolerance of its edge.
   int on_facet(std::size_t i, const pt& x) const {
     const auto& f = facets_[i];
     for (std::size_t k = 0; k < D; ++k)
@@ -151,7 +153,7 @@ class facet_set {
       if (in_region(i, x)) return on;
       for (const auto& l : f.loops)  // a vertex rounded just off the region's edge
         for (std::size_t k = 0; k < l.q.size(); ++k)
-          if (distance_to_segment(x, l.q[k], l.q[(k + 1) % l.q.size()]) <= tol_) return 0;
+          if (distance_to_segment(x, l.q[k], l.q[(k + 1) % l.q.size()]) <= tol_) return 2;
       return -1;
     } else {
       const bool between = f.lo[0] <= x[0] && x[0] <= f.hi[0] && f.lo[1] <= x[1] && x[1] <= f.hi[1];

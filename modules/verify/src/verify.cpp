@@ -128,31 +128,37 @@ struct mesh_view {
 /// For every mesh vertex, the facets it lies on (CSR), each with whether exactly.
 struct vertex_facets {
   std::vector<std::size_t> start;
-  std::vector<std::pair<std::uint32_t, bool>> list;
+  std::vector<std::pair<std::uint32_t, signed char>> list;  // (facet, facet_set::on_facet's answer)
   bool any(vertex_id v) const { return start[v] != start[v + 1]; }
   /// -1: v is not on facet f; 0: within the tolerance; 1: exactly.
   int on(vertex_id v, std::uint32_t f) const {
     for (auto k = start[v]; k < start[v + 1]; ++k)
-      if (list[k].first == f) return list[k].second ? 1 : 0;
+      if (list[k].first == f) return list[k].second == 1 ? 1 : 0;
     return -1;
+  }
+  /// v is on f only within the tolerance of its edge, outside its region (3D).
+  bool off_region(vertex_id v, std::uint32_t f) const {
+    for (auto k = start[v]; k < start[v + 1]; ++k)
+      if (list[k].first == f) return list[k].second == 2;
+    return false;
   }
 };
 
 template <std::size_t D>
 vertex_facets classify_vertices(const std::vector<point<D>>& p, const facet_set<D>& fs, unsigned threads) {
-  std::vector<std::vector<std::tuple<vertex_id, std::uint32_t, bool>>> found((p.size() + chunk - 1) / chunk);
+  std::vector<std::vector<std::tuple<vertex_id, std::uint32_t, signed char>>> found((p.size() + chunk - 1) / chunk);
   in_tasks(threads, p.size(), [&](std::size_t b, std::size_t e, std::size_t t) {
     for (std::size_t v = b; v < e; ++v)
       fs.near(p[v], [&](std::uint32_t f) {
-        if (const int on = fs.on_facet(f, p[v]); on >= 0) found[t].emplace_back(static_cast<vertex_id>(v), f, on == 1);
+        if (const int on = fs.on_facet(f, p[v]); on >= 0) found[t].emplace_back(static_cast<vertex_id>(v), f, static_cast<signed char>(on));
       });
   });
   vertex_facets vf;
   vf.start.assign(p.size() + 1, 0);
   for (const auto& l : found)
-    for (const auto& [v, f, exact] : l) {
+    for (const auto& [v, f, on] : l) {
       ++vf.start[v + 1];
-      vf.list.emplace_back(f, exact);
+      vf.list.emplace_back(f, on);
     }
   std::partial_sum(vf.start.begin(), vf.start.end(), vf.start.begin());
   return vf;
@@ -193,29 +199,35 @@ placement place(const facet_set<D>& fs, const vertex_facets& vf, const std::vect
     if (!vf.any(x)) return placement::off;
   point<D> centre{};
   for (auto x : v) centre = centre + (1.0 / D) * p[x];
-  // one facet holding every vertex (and, in 3D, the centroid)
+  // one facet holding every vertex (and, in 3D, the centroid). `loose`: one that holds them only
+  // with a vertex rounded off its region, just across its edge: used if the face does not split
+  // into shares of coplanar facets (a face across the seam of two coplanar facets of one marker,
+  // its vertex 1e-10 inside the neighbour, is that neighbour's share, not a rounding)
+  std::vector<hit> loose;
   scratch.clear();
   for (auto x : v)
     for (auto k = vf.start[x]; k < vf.start[x + 1]; ++k) scratch.push_back(vf.list[k].first);
   std::sort(scratch.begin(), scratch.end());
   scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
   for (auto f : scratch) {
-    bool all = true, exact = true;
+    bool all = true, exact = true, off = false;
     for (auto x : v) {
       const int on = vf.on(x, f);
       all = all && on >= 0;
       exact = exact && on == 1;
+      off = off || vf.off_region(x, f);
     }
     if (!all) continue;
     if constexpr (D == 3)
       if (!fs.in_region(f, centre)) continue;
-    hits.push_back({f, size, exact});
+    (off ? loose : hits).push_back({f, size, exact});
   }
-  if (!hits.empty()) {
-    if (std::any_of(hits.begin(), hits.end(), [](const hit& h) { return h.exact; }))
-      std::erase_if(hits, [](const hit& h) { return !h.exact; });
+  auto inside = [&](std::vector<hit>& h) {
+    if (std::any_of(h.begin(), h.end(), [](const hit& x) { return x.exact; }))
+      std::erase_if(h, [](const hit& x) { return !x.exact; });
     return placement::inside;
-  }
+  };
+  if (!hits.empty()) return inside(hits);
   // coplanar facets sharing the face: their clipped shares must add up to it
   point<D> lo = p[v[0]], hi = lo;
   for (auto x : v)
@@ -240,6 +252,10 @@ placement place(const facet_set<D>& fs, const vertex_facets& vf, const std::vect
   });
   if (hits.empty() || std::abs(covered - size) > slack) {
     hits.clear();
+    if (!loose.empty()) {
+      hits = std::move(loose);
+      return inside(hits);
+    }
     return placement::off;
   }
   // but where the face lies is decided by its shares beyond rounding: a vertex rounded an ulp
