@@ -51,7 +51,7 @@ void usage(std::FILE* to) {
       "           180 - 2A degrees are refined too (default 5: none below 5 or above 170; 0: off)\n"
       "  --acute-guard F  with --quality: small input angles excepted (3D: bad elements whose\n"
       "           circumcentre lies within F times an acute vertex's protecting ball; 2D: any F > 0\n"
-      "           turns on Shewchuk's rule); counted and located in the summary (default 2; 0: off)\n"
+      "           turns on Shewchuk's rule); counted and located in the summary (default 1; 0: off)\n"
       "  --cloud  extra interior points (.node); points outside every segment are dropped\n"
       "  --verify check the mesh against the input (valid, conforming, labelled, Delaunay); if it\n"
       "           fails: exit status 3, no output written (neither -o nor --stats)\n"

@@ -3,7 +3,9 @@
 // read-only formats (.poly, .smesh, OFF, STL) read hand-written files with known content.
 #define BOOST_TEST_MODULE io_roundtrip
 #include <boost/test/unit_test.hpp>
+#include <zlib.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <sstream>
@@ -270,6 +272,97 @@ BOOST_AUTO_TEST_CASE(vtu_read_back) {
   BOOST_TEST_REQUIRE(a != nullptr);
   BOOST_TEST(a->components == 1u);
   for (std::size_t v = 0; v < d.points().size(); ++v) BOOST_TEST(a->values[v] == values(s0, phi)[v]);
+}
+
+// The encodings write_vtu does not produce, built by hand: appended base64 (header and data
+// encoded apart, as VTK does) with UInt32 headers in big-endian byte order, and appended raw
+// zlib-compressed blocks (two blocks, the last one short) with UInt64 headers.
+BOOST_AUTO_TEST_CASE(vtu_read_appended_encodings) {
+  test::scratch_dir dir("rt_vtu_enc");
+  const std::vector<double> coords{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const std::vector<std::int32_t> conn{0, 1, 2, 3}, offs{4};
+  const std::vector<std::uint8_t> types{10};
+  const std::vector<double> size{0.5, 0.25, 0.125, 1.0};
+  auto bytes = [](const auto& v, bool big) {
+    std::string b;
+    for (auto x : v) {
+      char c[sizeof(x)];
+      std::memcpy(c, &x, sizeof(x));
+      if (big) std::reverse(c, c + sizeof(x));
+      b.append(c, sizeof(x));
+    }
+    return b;
+  };
+  auto b64 = [](const std::string& in) {
+    static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string o;
+    for (std::size_t i = 0; i < in.size(); i += 3) {
+      const auto n = std::min<std::size_t>(3, in.size() - i);
+      std::uint32_t v = 0;
+      for (std::size_t k = 0; k < 3; ++k) v = (v << 8) | (k < n ? static_cast<unsigned char>(in[i + k]) : 0u);
+      for (std::size_t k = 0; k < 4; ++k) o += k <= n ? t[(v >> (18 - 6 * k)) & 63] : '=';
+    }
+    return o;
+  };
+  auto file = [&](const std::string& header_attrs, const std::string& encoding, const std::vector<std::string>& blocks) {
+    std::string x = "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" " + header_attrs +
+                    ">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"4\" NumberOfCells=\"1\">\n";
+    const char* heads[5] = {"<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\"",
+                            "</Points><Cells><DataArray type=\"Int32\" Name=\"connectivity\"",
+                            "<DataArray type=\"Int32\" Name=\"offsets\"", "<DataArray type=\"UInt8\" Name=\"types\"",
+                            "</Cells><PointData><DataArray type=\"Float64\" Name=\"size\""};
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < 5; ++k) {
+      x += std::string(heads[k]) + " format=\"appended\" offset=\"" + std::to_string(at) + "\"/>\n";
+      at += blocks[k].size();
+    }
+    x += "</PointData></Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"" + encoding + "\">\n_";
+    for (const auto& b : blocks) x += b;
+    return x + "\n</AppendedData>\n</VTKFile>\n";
+  };
+  auto check = [&](const std::string& path) {
+    const auto g = io::read_vtu(path);
+    BOOST_TEST_REQUIRE(g.points.size() == 4u, path);
+    for (std::size_t i = 0; i < 12; ++i) BOOST_TEST(g.points[i / 3][i % 3] == coords[i]);
+    BOOST_TEST((g.connectivity == std::vector<std::size_t>{0, 1, 2, 3}));
+    BOOST_TEST(g.cell_types.size() == 1u);
+    BOOST_TEST(g.cell_types[0] == 10);
+    const auto* a = g.point_array("size");
+    BOOST_TEST_REQUIRE(a != nullptr);
+    BOOST_TEST(a->values == size);
+  };
+  {
+    // base64, big-endian, UInt32 headers: each block is base64(header) + base64(data)
+    std::vector<std::string> blocks;
+    auto block = [&](const std::string& data) {
+      blocks.push_back(b64(bytes(std::vector<std::uint32_t>{static_cast<std::uint32_t>(data.size())}, true)) + b64(data));
+    };
+    block(bytes(coords, true)), block(bytes(conn, true)), block(bytes(offs, true)), block(bytes(types, true)), block(bytes(size, true));
+    check(dir.write("b64.vtu", file("byte_order=\"BigEndian\" header_type=\"UInt32\"", "base64", blocks)));
+  }
+  {
+    // raw, zlib, UInt64 headers, blocks of 64 bytes (the points' 96 bytes make two, the last 32)
+    std::vector<std::string> blocks;
+    auto block = [&](const std::string& data) {
+      const std::size_t bs = 64, nb = (data.size() + bs - 1) / bs;
+      std::vector<std::string> parts;
+      std::vector<std::uint64_t> head{nb, bs, data.size() % bs};
+      for (std::size_t k = 0; k < nb; ++k) {
+        const std::string piece = data.substr(k * bs, bs);
+        uLongf n = compressBound(static_cast<uLong>(piece.size()));
+        std::string z(n, '\0');
+        BOOST_TEST_REQUIRE(compress(reinterpret_cast<Bytef*>(z.data()), &n, reinterpret_cast<const Bytef*>(piece.data()), static_cast<uLong>(piece.size())) == Z_OK);
+        z.resize(n);
+        parts.push_back(z);
+        head.push_back(n);
+      }
+      std::string b = bytes(head, false);
+      for (const auto& z : parts) b += z;
+      blocks.push_back(b);
+    };
+    block(bytes(coords, false)), block(bytes(conn, false)), block(bytes(offs, false)), block(bytes(types, false)), block(bytes(size, false));
+    check(dir.write("zlib.vtu", file("byte_order=\"LittleEndian\" header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\"", "raw", blocks)));
+  }
 }
 
 // Every way a .vtu can be wrong gives an io_error naming the file and the line of the element at

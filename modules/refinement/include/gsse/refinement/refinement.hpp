@@ -44,7 +44,7 @@ struct options {
   // 3D small input angles: a bad element whose circumcentre lies within acute_guard x the
   // protecting ball of an acute PLC vertex (the conformer's; shells about it) is excepted: left
   // as it is and counted (stats::excepted). 0: none
-  double acute_guard = 2;
+  double acute_guard = 1;
   unsigned threads = 1;
   std::function<void(const std::string&)> progress;  // one line per round, may be empty
 };
