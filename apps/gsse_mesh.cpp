@@ -30,7 +30,7 @@ void usage(std::FILE* to) {
       "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
       "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly] [--msh 4.1|2.2] [--verify-tol R]\n"
       "                 [--grade G] [--no-feature-size] [--quality [B]] [--sliver-angle A]\n"
-      "                 [--acute-guard F]\n"
+      "                 [--acute-guard F] [--quality-rounds N]\n"
       "       gsse-mesh INPUT --check MESH [--threads N] [--quiet] [--verify-tol R]\n"
       "  INPUT    TetGen .poly/.smesh (3D), Triangle .poly (2D), or a closed surface: OFF, STL,\n"
       "           Gmsh .msh surface mesh (its volumes become segments)\n"
@@ -52,6 +52,8 @@ void usage(std::FILE* to) {
       "  --acute-guard F  with --quality: small input angles excepted (3D: bad elements whose\n"
       "           circumcentre lies within F times an acute vertex's protecting ball; 2D: any F > 0\n"
       "           turns on Shewchuk's rule); counted and located in the summary (default 1; 0: off)\n"
+      "  --quality-rounds N  with --quality: stop after N rounds (default 60 in 3D, 250 in 2D); the\n"
+      "           elements left above the bound are reported\n"
       "  --cloud  extra interior points (.node); points outside every segment are dropped\n"
       "  --verify check the mesh against the input (valid, conforming, labelled, Delaunay); if it\n"
       "           fails: exit status 3, no output written (neither -o nor --stats)\n"
@@ -78,6 +80,7 @@ struct args {
   bool quality = false;
   double sliver_angle = gsse::refinement::options{}.sliver_angle;
   double acute_guard = gsse::refinement::options{}.acute_guard;
+  std::size_t quality_rounds = 0;
   bool no_feature = false;
   unsigned threads = 1;
   bool verify = false, verify_tol_given = false, quiet = false, no_merge = false, msh22 = false;
@@ -123,6 +126,7 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.quality_bound = a.quality_bound;
   o.sliver_angle = a.sliver_angle;
   o.acute_guard = a.acute_guard;
+  o.quality_rounds = a.quality_rounds;
   if (a.quality) gsse::refinement::ratio_bound(D, a.quality_bound);  // a bound out of range is a usage error
   o.verify_tolerance = a.verify_tol;
   o.conform.max_steiner = a.max_steiner;
@@ -354,6 +358,10 @@ int main(int argc, char** argv) {
             ++i;
           }
         }
+      } else if (s == "--quality-rounds") {
+        const long n = std::stol(value());
+        if (n < 1 || n > 100000) throw std::invalid_argument("--quality-rounds must be in [1, 100000]");
+        a.quality_rounds = static_cast<std::size_t>(n);
       } else if (s == "--acute-guard") {
         a.acute_guard = std::stod(value());
         if (!(a.acute_guard >= 0 && a.acute_guard <= 100)) throw std::invalid_argument("--acute-guard must be in [0, 100]");

@@ -13,7 +13,11 @@
 #  --check      an existing mesh against the input: the good mesh passes (exit 0); the same mesh
 #               with one tetrahedron dropped, or with the inner box relabelled as the outer
 #               region, fails with exit 3 and the verifier's problem on stderr (the verdict and
-#               exit status are the code --verify's failure goes through).
+#               exit status are the code --verify's failure goes through);
+#  --quality    on a needle (a pyramid with a 14-degree apex in a box): --stats lists the elements
+#               excepted at the apex under excepted_near (the apex's coordinates, as many as
+#               `excepted`), the summary names the point; --quality-rounds 3 stops after 3 rounds
+#               (not converged); --acute-guard 0 excepts nothing.
 # usage: cli_behaviour.sh GSSE_MESH SOURCE_DIR
 set -uo pipefail
 mesh=$1; src=$2
@@ -117,6 +121,69 @@ else bad "--verify-tol 0 on a rotated cube: exit $rc, files: $(ls "$work"/rot.* 
 out=$("$mesh" "$work/rot.poly" --size 0.2 --verify -o "$work/rot.vtu" --stats "$work/rot.json" 2>&1); rc=$?
 if [ $rc = 0 ] && [[ "$out" == *"verify: PASS"* ]] && [ -e "$work/rot.vtu" ] && [ -e "$work/rot.json" ]; then ok "--verify on the rotated cube: PASS, both files written"
 else bad "--verify on the rotated cube: exit $rc"; fi
+
+# --quality on a needle: where the elements are excepted, the round cap, the exception off
+cat > "$work/needle.poly" <<'POLY'
+13 3 0 0
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+5 0.5 0.5 4
+6 -1 -1 -1
+7 2 -1 -1
+8 2 2 -1
+9 -1 2 -1
+10 -1 -1 5
+11 2 -1 5
+12 2 2 5
+13 -1 2 5
+11 0
+1
+4 1 2 3 4
+1
+3 1 2 5
+1
+3 2 3 5
+1
+3 3 4 5
+1
+3 4 1 5
+1
+4 6 7 8 9
+1
+4 10 11 12 13
+1
+4 6 7 11 10
+1
+4 7 8 12 11
+1
+4 8 9 13 12
+1
+4 9 6 10 13
+0
+2
+1 0.5 0.5 0.5 1 0
+2 -0.5 -0.5 -0.5 2 0
+POLY
+out=$("$mesh" "$work/needle.poly" --quality 2 --grade 1.3 --verify --stats "$work/n.json" 2>&1); rc=$?
+verdict=$($py - "$work/n.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))["quality"]["refinement"]
+near = r["excepted_near"]
+ok = r["converged"] and r["excepted"] > 0 and r["excepted"] == r["above_bound"] and len(near) == 1 \
+     and near[0]["at"] == [0.5, 0.5, 4] and near[0]["elements"] == r["excepted"]
+print("ok" if ok else "bad: %s" % r)
+PY
+)
+if [ $rc = 0 ] && [ "$verdict" = ok ] && [[ "$out" == *"near the input point (0.5, 0.5, 4)"* ]]; then ok "--quality on the needle: excepted at the apex, in --stats and the summary"
+else bad "--quality on the needle: exit $rc, $verdict"; fi
+"$mesh" "$work/needle.poly" --quality 2 --grade 1.3 --quality-rounds 3 --stats "$work/n3.json" --quiet; rc=$?
+verdict=$($py -c "import json,sys; r=json.load(open(sys.argv[1]))['quality']['refinement']; print('ok' if r['rounds'] == 3 and not r['converged'] else r)" "$work/n3.json")
+if [ $rc = 0 ] && [ "$verdict" = ok ]; then ok "--quality-rounds 3: 3 rounds, not converged"; else bad "--quality-rounds 3: exit $rc, $verdict"; fi
+"$mesh" "$work/needle.poly" --quality 2 --grade 1.3 --quality-rounds 5 --acute-guard 0 --stats "$work/n0.json" --quiet; rc=$?
+verdict=$($py -c "import json,sys; r=json.load(open(sys.argv[1]))['quality']['refinement']; print('ok' if r['excepted'] == 0 and r['excepted_near'] == [] and r['above_bound'] > 0 else r)" "$work/n0.json")
+if [ $rc = 0 ] && [ "$verdict" = ok ]; then ok "--acute-guard 0: nothing excepted"; else bad "--acute-guard 0: exit $rc, $verdict"; fi
 
 # --check: the good mesh, then broken copies of it
 out=$("$mesh" "$work/box.poly" --check "$work/m.node" 2>&1); rc=$?
