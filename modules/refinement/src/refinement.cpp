@@ -225,6 +225,71 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       }
     }
   }
+  // 3D small dihedral angles: a subsegment of an input edge where two boundary faces meet at less
+  // than 60 degrees (measured between their third vertices, perpendicular to the edge; doubles,
+  // a refinement policy) is sharp. A bad element whose circumcentre lies within acute_guard x
+  // the subsegment's length of it is excepted, and reported at the subsegment's first end.
+  struct sharp_piece {
+    vertex_id a, c;
+    double reach;
+  };
+  std::vector<sharp_piece> sharp;
+  std::vector<sizing::aabb<D>> sharp_boxes;
+  if constexpr (D == 3) {
+    if (acute_guard > 0) {
+      auto on_edge = [&](vertex_id v) { return v < b.plc_points || b.homes[v].kind == conformer::home::edge; };
+      std::unordered_map<std::uint64_t, std::vector<vertex_id>> around;  // subsegment -> third vertices
+      for (const auto& F : b.faces)
+        for (int i = 0; i < 3; ++i) {
+          const vertex_id u = F[static_cast<std::size_t>(i)], v = F[static_cast<std::size_t>((i + 1) % 3)], w = F[static_cast<std::size_t>((i + 2) % 3)];
+          if (!on_edge(u) || !on_edge(v)) continue;
+          const auto key = (std::uint64_t{std::min(u, v)} << 32) | std::max(u, v);
+          around[key].push_back(w);
+        }
+      std::vector<std::pair<std::uint64_t, const std::vector<vertex_id>*>> keys;
+      for (const auto& kv : around)
+        if (kv.second.size() >= 2) keys.push_back({kv.first, &kv.second});
+      std::sort(keys.begin(), keys.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      for (const auto& [key, thirds] : keys) {
+        const auto u = static_cast<vertex_id>(key >> 32), v = static_cast<vertex_id>(key & 0xffffffffu);
+        const point<D> d = p[v] - p[u];
+        const double dd = dot(d, d);
+        std::vector<point<D>> dirs;
+        for (vertex_id w : *thirds) {
+          point<D> x = p[w] - p[u];
+          x = x - (dot(x, d) / dd) * d;
+          const double n = std::sqrt(dot(x, x));
+          if (n > 0) dirs.push_back((1 / n) * x);
+        }
+        bool thin = false;
+        for (std::size_t i = 0; i < dirs.size() && !thin; ++i)
+          for (std::size_t j = i + 1; j < dirs.size(); ++j)
+            if (dot(dirs[i], dirs[j]) > 0.5) thin = true;
+        if (!thin) continue;
+        const double reach = acute_guard * std::sqrt(dd);
+        sharp.push_back({u, v, reach});
+        auto box = sizing::aabb<D>::empty();
+        box.add(p[u]), box.add(p[v]);
+        for (std::size_t k = 0; k < D; ++k) box.lo[k] -= reach, box.hi[k] += reach;
+        sharp_boxes.push_back(box);
+      }
+    }
+  }
+  const sizing::box_tree<D> sharp_tree(sharp_boxes, std::vector<double>(sharp_boxes.size(), 0.0));
+  auto near_sharp = [&](const point<D>& x) -> std::size_t {  // a sharp piece within reach of x, or none
+    std::size_t hit = sharp.size();
+    sharp_tree.visit([&](const sizing::aabb<D>& box) { return box.contains(x); },
+                     [&](std::uint32_t i) {
+                       const point<D> a = p[sharp[i].a], d = p[sharp[i].c] - a;
+                       const double t = std::clamp(dot(x - a, d) / dot(d, d), 0.0, 1.0);
+                       if (squared_distance(x, a + t * d) < sharp[i].reach * sharp[i].reach) {
+                         hit = i;
+                         return false;
+                       }
+                       return true;
+                     });
+    return hit;
+  };
   // the acute vertex whose small angle the shortest edge (a, b) subtends (2D), or none
   auto subtends = [&](vertex_id a, vertex_id c) -> std::uint32_t {
     const auto& ha = b.homes[a];
@@ -240,7 +305,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
     return no_guard;
   };
   // per chunk, per guarded vertex (index into guarded): elements excepted about it
-  std::vector<std::vector<std::size_t>> excepted(chunks.size());
+  std::vector<std::vector<vertex_id>> excepted(chunks.size());  // per chunk: where each excepted element is
   auto near_acute = [&](const point<D>& x) -> std::size_t {  // the first guard holding x, or none
     for (std::size_t g = 0; g < guarded.size(); ++g)
       if (squared_distance(x, guarded[g].at) < guarded[g].r * guarded[g].r) return g;
@@ -270,19 +335,20 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
         if (flag) flag[ci] = 0;  // good, and a cell never changes: not looked at again
         continue;
       }
-      if (bad_shape && !guarded.empty()) {
-        // small input angle (3D): a bad element whose circumcentre falls near an acute vertex is
-        // excepted (left, counted): refining there makes the conformer go one shell deeper each
-        // round; 2D: a bad triangle whose shortest edge subtends a small input angle
-        std::size_t g = guarded.size();
+      if (bad_shape && (!guarded.empty() || !sharp.empty())) {
+        // small input angle (3D): a bad element whose circumcentre falls near an acute vertex or
+        // a sharp input edge is excepted (left, counted): refining there makes the conformer go
+        // one shell deeper each round; 2D: a bad triangle whose shortest edge subtends a small
+        // input angle
+        vertex_id where = no_vertex;
         if constexpr (D == 2) {
-          if (const auto s = subtends(c[si], c[sj]); s != no_guard) g = s;
+          if (const auto s = subtends(c[si], c[sj]); s != no_guard) where = guarded[s].v;
         } else {
-          g = near_acute(at);
+          if (const std::size_t g = near_acute(at); g < guarded.size()) where = guarded[g].v;
+          else if (const std::size_t e = near_sharp(at); e < sharp.size()) where = sharp[e].a;
         }
-        if (g < guarded.size()) {
-          if (excepted[k].empty()) excepted[k].assign(guarded.size(), 0);
-          ++excepted[k][g];
+        if (where != no_vertex) {
+          excepted[k].push_back(where);
           continue;
         }
       }
@@ -327,10 +393,11 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       all.push_back({k, i});
       if (found[k][i].count == 0) levels.insert(accepted_points<D>::level(found[k][i].r));
     }
-  for (std::size_t g = 0; g < guarded.size(); ++g) {
-    std::size_t n = 0;
-    for (const auto& e : excepted) n += e.empty() ? 0 : e[g];
-    if (n) out.excepted_near.push_back({guarded[g].v, n}), out.excepted += n;
+  {
+    std::map<vertex_id, std::size_t> at;
+    for (const auto& e : excepted)
+      for (vertex_id v : e) ++at[v], ++out.excepted;
+    out.excepted_near.assign(at.begin(), at.end());
   }
   const auto shaped = static_cast<std::size_t>(std::count_if(all.begin(), all.end(), [&](const ref& x) { return found[x.chunk][x.index].shape; }));
   out.bad = out.excepted + shaped;
