@@ -8,12 +8,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <map>
-#include <sstream>
 
+#include "binary_cursor.hpp"
 #include "gsse/io/vtu.hpp"
+#include "number_format.hpp"
 
 namespace gsse::io {
 
@@ -26,10 +25,9 @@ const vtu_grid::array* vtu_grid::point_array(std::string_view name) const {
 namespace {
 
 std::string num(double v) {
-  std::ostringstream o;
-  o.precision(17);
-  o << v;
-  return o.str();
+  std::string s;
+  detail::append_real(s, v);
+  return s;
 }
 
 struct tag {
@@ -497,12 +495,6 @@ class reader {
 
 }  // namespace
 
-vtu_grid read_vtu(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw io_error::whole(path, "cannot open the file");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw io_error::whole(path, "cannot read the file");
-  return reader(path, std::move(text)).run();
-}
+vtu_grid read_vtu(const std::string& path) { return reader(path, detail::slurp(path)).run(); }
 
 }  // namespace gsse::io

@@ -189,11 +189,8 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   // 2D small input angles (Shewchuk's rule, as Triangle applies it): a bad triangle whose
   // shortest edge joins two points on the same concentric shell about an input vertex where
   // their two input edges meet at less than 60 degrees is excepted: splitting it would only
-  // make the conformer's next, smaller shell. ends[e]: the PLC vertices that end input edge e;
-  // guard_of[v]: v's index in guarded (an acute vertex), or none.
+  // make the conformer's next, smaller shell. ends[e]: the PLC vertices that end input edge e.
   std::vector<std::array<vertex_id, 2>> ends;
-  std::vector<std::uint32_t> guard_of;
-  constexpr std::uint32_t no_guard = ~std::uint32_t{0};
   if constexpr (D == 2) {
     if (acute_guard > 0) {
       std::uint32_t edges = 0;
@@ -206,23 +203,6 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
             if (E[0] == no_vertex) E[0] = v;
             else if (E[0] != v) E[1] = v;
           }
-      // acute vertices: two input edges at less than 60 degrees (doubles: a refinement policy,
-      // not topology)
-      std::vector<std::vector<point<D>>> dirs(b.plc_points);
-      for (const auto& E : ends)
-        if (E[0] != no_vertex && E[1] != no_vertex)
-          for (int k = 0; k < 2; ++k) {
-            const point<D> d = p[E[1 - k]] - p[E[k]];
-            dirs[E[k]].push_back((1 / std::sqrt(squared_distance(p[E[1 - k]], p[E[k]]))) * d);
-          }
-      guard_of.assign(b.plc_points, no_guard);
-      for (std::size_t v = 0; v < b.plc_points; ++v) {
-        bool acute = false;
-        for (std::size_t i = 0; i < dirs[v].size() && !acute; ++i)
-          for (std::size_t j = i + 1; j < dirs[v].size(); ++j)
-            if (dirs[v][i][0] * dirs[v][j][0] + dirs[v][i][1] * dirs[v][j][1] > 0.5) acute = true;
-        if (acute) guard_of[v] = static_cast<std::uint32_t>(guarded.size()), guarded.push_back({p[v], 0, static_cast<vertex_id>(v)});
-      }
     }
   }
   // 3D small dihedral angles: a subsegment of an input edge where two boundary faces meet at less
@@ -290,21 +270,23 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
                      });
     return hit;
   };
-  // the acute vertex whose small angle the shortest edge (a, b) subtends (2D), or none
-  auto subtends = [&](vertex_id a, vertex_id c) -> std::uint32_t {
+  // the input vertex whose small angle the shortest edge (a, c) subtends (2D), or no_vertex: a and
+  // c on two input edges that share v, on one shell about v, the edges at less than 60 degrees
+  // (doubles: a refinement policy, not topology)
+  auto subtends = [&](vertex_id a, vertex_id c) -> vertex_id {
     const auto& ha = b.homes[a];
     const auto& hc = b.homes[c];
-    if (ha.kind != conformer::home::edge || hc.kind != conformer::home::edge || ha.id == hc.id) return no_guard;
-    if (ha.id >= ends.size() || hc.id >= ends.size()) return no_guard;
+    if (ha.kind != conformer::home::edge || hc.kind != conformer::home::edge || ha.id == hc.id) return no_vertex;
+    if (ha.id >= ends.size() || hc.id >= ends.size()) return no_vertex;
     for (vertex_id v : ends[ha.id]) {
-      if (v == no_vertex || (v != ends[hc.id][0] && v != ends[hc.id][1]) || guard_of[v] == no_guard) continue;
-      const double da = squared_distance(p[a], p[v]), dc = squared_distance(p[c], p[v]);
+      if (v == no_vertex || (v != ends[hc.id][0] && v != ends[hc.id][1])) continue;
+      const point<D> x = p[a] - p[v], y = p[c] - p[v];
+      const double da = dot(x, x), dc = dot(y, y);
       const double ratio = 1.002001;  // (1.001)^2: the same shell, as Triangle tests it
-      if (da < ratio * dc && dc < ratio * da) return guard_of[v];
+      if (da < ratio * dc && dc < ratio * da && dot(x, y) > 0.5 * std::sqrt(da * dc)) return v;
     }
-    return no_guard;
+    return no_vertex;
   };
-  // per chunk, per guarded vertex (index into guarded): elements excepted about it
   std::vector<std::vector<vertex_id>> excepted(chunks.size());  // per chunk: where each excepted element is
   auto near_acute = [&](const point<D>& x) -> std::size_t {  // the first guard holding x, or none
     for (std::size_t g = 0; g < guarded.size(); ++g)
@@ -335,14 +317,14 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
         if (flag) flag[ci] = 0;  // good, and a cell never changes: not looked at again
         continue;
       }
-      if (bad_shape && (!guarded.empty() || !sharp.empty())) {
+      if (bad_shape && (!guarded.empty() || !sharp.empty() || !ends.empty())) {
         // small input angle (3D): a bad element whose circumcentre falls near an acute vertex or
         // a sharp input edge is excepted (left, counted): refining there makes the conformer go
         // one shell deeper each round; 2D: a bad triangle whose shortest edge subtends a small
         // input angle
         vertex_id where = no_vertex;
         if constexpr (D == 2) {
-          if (const auto s = subtends(c[si], c[sj]); s != no_guard) where = guarded[s].v;
+          where = subtends(c[si], c[sj]);
         } else {
           if (const std::size_t g = near_acute(at); g < guarded.size()) where = guarded[g].v;
           else if (const std::size_t e = near_sharp(at); e < sharp.size()) where = sharp[e].a;

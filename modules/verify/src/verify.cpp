@@ -130,17 +130,17 @@ struct vertex_facets {
   std::vector<std::size_t> start;
   std::vector<std::pair<std::uint32_t, signed char>> list;  // (facet, facet_set::on_facet's answer)
   bool any(vertex_id v) const { return start[v] != start[v + 1]; }
-  /// -1: v is not on facet f; 0: within the tolerance; 1: exactly.
-  int on(vertex_id v, std::uint32_t f) const {
+  /// facet_set::on_facet's answer for v and f: -1 not on it, 0 within the tolerance, 1 exactly,
+  /// 2 within the tolerance of its edge but outside its region (3D).
+  int kind(vertex_id v, std::uint32_t f) const {
     for (auto k = start[v]; k < start[v + 1]; ++k)
-      if (list[k].first == f) return list[k].second == 1 ? 1 : 0;
+      if (list[k].first == f) return list[k].second;
     return -1;
   }
-  /// v is on f only within the tolerance of its edge, outside its region (3D).
-  bool off_region(vertex_id v, std::uint32_t f) const {
-    for (auto k = start[v]; k < start[v + 1]; ++k)
-      if (list[k].first == f) return list[k].second == 2;
-    return false;
+  /// -1: v is not on facet f; 0: within the tolerance; 1: exactly.
+  int on(vertex_id v, std::uint32_t f) const {
+    const int k = kind(v, f);
+    return k == 2 ? 0 : k;
   }
 };
 
@@ -212,10 +212,10 @@ placement place(const facet_set<D>& fs, const vertex_facets& vf, const std::vect
   for (auto f : scratch) {
     bool all = true, exact = true, off = false;
     for (auto x : v) {
-      const int on = vf.on(x, f);
+      const int on = vf.kind(x, f);
       all = all && on >= 0;
       exact = exact && on == 1;
-      off = off || vf.off_region(x, f);
+      off = off || on == 2;
     }
     if (!all) continue;
     if constexpr (D == 3)
