@@ -28,19 +28,27 @@ namespace {
 using rules::element_kind;
 using rules::relation;
 
+/// The largest extent of the box of pts (at least 1e-300).
+template <std::size_t D>
+double extent_of(const std::vector<point<D>>& pts) {
+  if (pts.empty()) return 1;
+  point<D> lo = pts[0], hi = pts[0];
+  for (const auto& q : pts)
+    for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+  double ext = 1e-300;
+  for (std::size_t k = 0; k < D; ++k) ext = std::max(ext, hi[k] - lo[k]);
+  return ext;
+}
+
 /// Grid cells for `count` points (pts.size() if 0) in the box of pts: about one point per cell if
 /// they filled the box, never above `size` when given.
 template <std::size_t D>
 double cell_size_for(const std::vector<point<D>>& pts, double size, std::size_t count = 0) {
-  point<D> lo = pts[0], hi = pts[0];
-  for (const auto& q : pts)
-    for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
-  double ext = 0;
-  for (std::size_t k = 0; k < D; ++k) ext = std::max(ext, hi[k] - lo[k]);
+  const double ext = extent_of(pts);
   if (count == 0) count = pts.size();
   double h = ext / std::max(1.0, std::pow(static_cast<double>(count), 1.0 / static_cast<double>(D)));
   if (size > 0) h = std::min(h, size);
-  return h > 0 ? h : 1.0;
+  return h > 1e-300 ? h : 1.0;
 }
 
 /// PLC edge: its end vertices and its chain of subsegment vertices (ends included).
@@ -94,7 +102,7 @@ class state {
  public:
   state(const plc<D>& p, const std::vector<point<D>>& volume, const options& o)
       : plc_(p), opt_(o), grid_h_(p.points.empty() ? 1.0 : cell_size_for(p.points, o.size, p.points.size() + volume.size())),
-        grid_(p.points.empty() ? point<D>{} : p.points[0], grid_h_) {
+        grid_(p.points.empty() ? point<D>{} : p.points[0], grid_h_, extent_of(p.points)) {
     if (p.points.empty()) throw conform_error(p.source + ": the PLC has no points");
     out_.points = p.points;
     out_.homes.assign(p.points.size(), {});
@@ -215,7 +223,16 @@ class state {
       // coarse box): cells as for today's count, else each lookup scans crowded cells
       grid_sized_for_ = out_.points.size();
       grid_h_ = std::min(grid_h_, cell_size_for(out_.points, opt_.size, grid_sized_for_));
-      grid_ = hash_grid<D>(out_.points[0], grid_h_);
+      // cell_size_for sizes cells as if the points filled their box; boundary points fill a
+      // surface, about count^(1/3) to a cell of that size, so halve the cells until an occupied
+      // one holds about 4 (every ball test reads the crowded cells about it)
+      for (;;) {
+        hash_grid<D> fine(out_.points[0], grid_h_);
+        for (vertex_id w = 0; w < out_.points.size(); ++w) fine.insert(w, out_.points[w]);
+        if (out_.points.size() <= 4 * fine.occupied() || grid_h_ < 1e-6 * model_size_) break;
+        grid_h_ *= 0.5;
+      }
+      grid_ = grid_levels<D>(out_.points[0], grid_h_, extent_of(out_.points));
       for (vertex_id w = 0; w < out_.points.size(); ++w) grid_.insert(w, out_.points[w]);
     } else {
       grid_.insert(v, q);
@@ -249,7 +266,7 @@ class state {
     const double r = std::max(1e-8 * scale, 1e-11 * model_size_);
     point<D> lo, hi;
     for (std::size_t k = 0; k < D; ++k) lo[k] = q[k] - r, hi[k] = q[k] + r;
-    return !grid_.visit(lo, hi, [&](vertex_id y) { return squared_distance(out_.points[y], q) > r * r; });
+    return !grid_.for_box(lo, hi).visit(lo, hi, [&](vertex_id y) { return squared_distance(out_.points[y], q) > r * r; });
   }
 
   /// Marks the PLC vertices where two PLC edges meet at less than 60 degrees: their edges are
@@ -354,7 +371,7 @@ class state {
     vertex_id strict = no_vertex;
     ties.clear();
     const double r2 = r * r;
-    grid_.visit_rings(c, lo, hi, [&](vertex_id y) {
+    grid_.for_box(lo, hi).visit_rings(c, lo, hi, [&](vertex_id y) {
       if (y == a || y == b || (strict != no_vertex && y > strict)) return;
       if (squared_distance(c, p[y]) > r2) return;  // double prefilter, padded
       const int s = geometry::in_diametral(p[a], p[b], p[y]);
@@ -658,7 +675,7 @@ class state {
   options opt_;
   boundary<D> out_;
   double grid_h_;
-  hash_grid<D> grid_;
+  grid_levels<D> grid_;
   std::size_t grid_sized_for_ = 0;  // points the cell size was chosen for
   point<D> box_lo_{}, box_hi_{};  // bounding box of all points
   double model_size_ = 1;         // diagonal of the PLC's bounding box
@@ -673,9 +690,6 @@ class state {
   // GSSE_CONFORM_TRACE=1: per round, the number of splits and which rule/action fired how often
   bool trace_on_ = std::getenv("GSSE_CONFORM_TRACE") != nullptr;
   std::map<std::string, std::size_t> trace_;
-
- public:
-  hash_grid<D>& grid() { return grid_; }
 };
 
 // ------------------------------------------------------------------------------------------ 3D
@@ -794,7 +808,7 @@ class state3 : public state<3> {
       // other points (PLC vertices, volume points) within 3r
       point3 lo, hi;
       for (std::size_t k = 0; k < 3; ++k) lo[k] = p[v][k] - 3 * r, hi[k] = p[v][k] + 3 * r;
-      grid_.visit(lo, hi, [&](vertex_id y) {
+      grid_.for_box(lo, hi).visit(lo, hi, [&](vertex_id y) {
         if (y == v) return;
         const double d = distance(p[y], p[v]);
         r = std::min(r, y < n ? d / 3 : d / 2);
@@ -1062,7 +1076,7 @@ class state3 : public state<3> {
     vertex_id strict = no_vertex;
     ties.clear();
     const double r2 = r * r;
-    grid_.visit_rings(cc, lo, hi, [&](vertex_id y) {
+    grid_.for_box(lo, hi).visit_rings(cc, lo, hi, [&](vertex_id y) {
       if (y == a || y == b || y == c || (strict != no_vertex && y > strict)) return;
       if (squared_distance(cc, p[y]) > r2) return;  // double prefilter, padded
       const int s = geometry::in_equatorial(p[a], p[b], p[c], p[y]);
@@ -1374,15 +1388,24 @@ class state3 : public state<3> {
       return y == a || y == b || y == c || y == d ||
              geometry::in_sphere_perturbed(p[a], p[b], p[c], p[d], p[y]) < 0;
     };
-    // the points about the tetrahedron first: a sphere that is not empty nearly always holds one
-    if (!grid_.visit_ring(0.25 * (p[a] + p[b] + p[c] + p[d]), 1, outside)) return false;
+    // the points about the tetrahedron first, nearest rings of cells first, 3 to 6 rings, until
+    // 64 points are seen: a sphere that is not empty nearly always holds one of them (the sphere of a
+    // nearly flat tetrahedron is nearly a half-space); only then the exact ball (rational
+    // arithmetic) bounds the scan
+    const point3 g = 0.25 * (p[a] + p[b] + p[c] + p[d]);
+    int ring = 0;
+    std::size_t seen = 0;
+    bool held = false;
+    grid_.finest().visit_rings(g, box_lo_, box_hi_, [&](vertex_id y) { return ++seen, !(held = !outside(y)); },
+                      [&] { return ++ring > 2 && (seen >= 64 || ring > 6); });
+    if (held) return false;
     point3 cc;
     double r;
     geometry::exact_circumball(p[a], p[b], p[c], p[d], cc, r);
     point3 lo, hi;
-    for (std::size_t k = 0; k < 3; ++k)
-      lo[k] = std::max(cc[k] - r, box_lo_[k]), hi[k] = std::min(cc[k] + r, box_hi_[k]);
-    return grid_.visit(lo, hi, outside);
+    ball_box(cc, r, lo, hi);
+    for (std::size_t k = 0; k < 3; ++k) lo[k] = std::min(lo[k], g[k]), hi[k] = std::max(hi[k], g[k]);
+    return grid_.for_box(lo, hi).visit_rings(g, lo, hi, outside, [] { return false; });
   }
 
   /// Subfacets to split because the front mesher would otherwise build a flat tetrahedron on

@@ -626,11 +626,15 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   }, [&](const chunk& ch) { return static_cast<double>(ch.count); });
   // 2. each region's cavity boundary: the faces of its dead cells met once, less the gone faces,
   // plus the new boundary faces on its side
+  // the points by place, to find those a task's cavities can use (below)
   const auto grid = front::make_grid(std::span<const point<D>>(p));
+  point<D> all_lo = p[0], all_hi = p[0];
+  for (const auto& q : p)
+    for (std::size_t k = 0; k < D; ++k) all_lo[k] = std::min(all_lo[k], q[k]), all_hi[k] = std::max(all_hi[k], q[k]);
   struct task {
     std::size_t region;
     std::vector<face_t<D>> front;
-    double measure = 0;  // D! x the volume the dead cells held
+    std::vector<std::pair<point<D>, point<D>>> boxes;  // the bounding box of each piece's front
   };
   std::vector<task> tasks;
   std::vector<std::size_t> region_first(cells.size() + 1, 0);
@@ -681,9 +685,30 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       if (fresh) pieces.emplace_back();
       pieces[it->second].push_back(F);
     }
-    for (auto& pc : pieces) {
-      if (tasks.size() == region_first[r] || tasks.back().front.size() >= 4096) tasks.push_back({r, {}, 0});
-      tasks.back().front.insert(tasks.back().front.end(), pc.begin(), pc.end());
+    // pieces in the order of the cell of a 1024^D lattice over the points (Morton order) that
+    // holds their box's centre, then of their first face: a task's pieces lie together
+    std::vector<std::pair<point<D>, point<D>>> box(pieces.size());
+    std::vector<std::pair<std::uint64_t, std::size_t>> order(pieces.size());
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      auto& [lo, hi] = box[i];
+      lo = hi = p[pieces[i][0][0]];
+      for (const auto& F : pieces[i])
+        for (auto v : F)
+          for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], p[v][k]), hi[k] = std::max(hi[k], p[v][k]);
+      std::uint64_t m = 0;
+      for (std::size_t k = 0; k < D; ++k) {
+        const double e = all_hi[k] - all_lo[k];
+        const double t = e > 0 ? (0.5 * (lo[k] + hi[k]) - all_lo[k]) / e : 0;
+        const auto q = static_cast<std::uint64_t>(std::clamp(t * 1024, 0.0, 1023.0));
+        for (std::uint64_t bit = 0; bit < 10; ++bit) m |= ((q >> bit) & 1u) << (bit * D + k);
+      }
+      order[i] = {m, i};
+    }
+    std::sort(order.begin(), order.end());
+    for (auto [m, i] : order) {
+      if (tasks.size() == region_first[r] || tasks.back().front.size() >= 4096) tasks.push_back({r, {}, {}});
+      tasks.back().front.insert(tasks.back().front.end(), pieces[i].begin(), pieces[i].end());
+      tasks.back().boxes.push_back(box[i]);
     }
   }
   region_first[cells.size()] = tasks.size();
@@ -696,8 +721,24 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   std::iota(order.begin(), order.end(), std::size_t{0});
   for_each(execution::par(threads), order, [&](std::size_t t) {
     const auto& tk = tasks[t];
+    // the points a cavity's cells can use lie in the box of its front (its vertices, the new
+    // points inside it, an old vertex all of whose cells died): a grid over those fits the local
+    // spacing, where the grid over all points is crowded wherever the refinement went
+    std::vector<vertex_id> ids;
+    for (const auto& [lo, hi] : tk.boxes)
+      grid.visit_box(lo, hi, [&](vertex_id y, const point<D>& q) {
+        bool in = true;
+        for (std::size_t k = 0; k < D; ++k) in = in && lo[k] <= q[k] && q[k] <= hi[k];
+        if (in) ids.push_back(y);
+        return true;
+      });
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    std::vector<point<D>> at(ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) at[i] = p[ids[i]];
+    const front::point_grid<D> near(at, ids);
     try {
-      made[t] = front::wrap(std::span<const point<D>>(p), grid, tk.front,
+      made[t] = front::wrap(std::span<const point<D>>(p), near, tk.front,
                             "segment " + std::to_string(l1.regions[tk.region].number) + " '" + l1.regions[tk.region].name + "' (cavity)");
     } catch (const std::exception&) {
       ok[t] = 0;

@@ -47,7 +47,9 @@ class hash_grid {
   /// The cells the box [lo, hi] meets, by rings about q's cell (ring k: the cells k cells away
   /// from it in the maximum norm), nearest first; `ring_done()` is called after each ring with
   /// ids and true from it stops the scan (a search that takes the nearest find reads a few cells
-  /// of a large ball, not all of them). Returns false if stopped.
+  /// of a large ball, not all of them). If f returns bool, false stops the scan at once. Returns
+  /// false if stopped. Once the rings so far span more cells than are occupied, the rest of the
+  /// box comes as one last ring: every occupied cell in it, by key.
   template <class F, class Done>
   bool visit_rings(const point<D>& q, const point<D>& lo, const point<D>& hi, F&& f, Done&& ring_done) const {
     const cell a = cell_of(lo), b = cell_of(hi), c0 = cell_of(q);
@@ -55,26 +57,34 @@ class hash_grid {
     for (std::size_t k = 0; k < D; ++k) rings = std::max({rings, c0[k] - a[k], b[k] - c0[k]});
     double count = 1;
     for (std::size_t k = 0; k < D; ++k) count *= static_cast<double>(b[k] - a[k] + 1);
+    const double occupied = 4.0 * static_cast<double>(buckets_.size()) + 64;
+    bool stopped = false;
     auto probe = [&](const cell& c) {
+      if (stopped) return;
       const std::uint64_t key_c = key(c);
       const std::size_t i = slot(key_c);
       if (keys_[i] == key_c)
-        for (auto id : buckets_[vals_[i]]) call(f, id);
+        for (auto id : buckets_[vals_[i]])
+          if (!call(f, id)) {
+            stopped = true;
+            return;
+          }
     };
     for (long r = 0; r <= rings; ++r) {
-      if (count > 4.0 * static_cast<double>(buckets_.size()) + 64 && r > 0) {
-        // the rest of a box of more cells than are occupied: every occupied cell beyond ring r-1
-        std::vector<std::pair<std::uint64_t, std::uint32_t>> order;
-        for (std::size_t i = 0; i < keys_.size(); ++i)
-          if (keys_[i] != empty) order.push_back({keys_[i], vals_[i]});
-        std::sort(order.begin(), order.end());
-        for (auto [k, v] : order) {
-          const cell c = unkey(k);
+      if (count > occupied && r > 0 && std::pow(2.0 * static_cast<double>(r) + 1, static_cast<double>(D)) > occupied) {
+        // the rest of a box of more cells than are occupied: every occupied cell beyond ring r-1,
+        // in the table's order (fixed by the insertions made; the callers' results do not depend
+        // on it, only how soon they stop)
+        for (std::size_t i = 0; i < keys_.size(); ++i) {
+          if (keys_[i] == empty) continue;
+          const std::uint32_t v = vals_[i];
+          const cell c = unkey(keys_[i]);
           long d = 0;
           bool in = true;
           for (std::size_t j = 0; j < D; ++j) in = in && a[j] <= c[j] && c[j] <= b[j], d = std::max(d, std::abs(c[j] - c0[j]));
           if (in && d >= r)
-            for (auto id : buckets_[v]) call(f, id);
+            for (auto id : buckets_[v])
+              if (!call(f, id)) return false;
         }
         ring_done();
         return true;
@@ -105,10 +115,14 @@ class hash_grid {
           for (c[2] = lo_c[2]; c[2] <= hi_c[2]; ++c[2]) rim(c, std::abs(c[2] - c0[2]) == r);
         }
       }
+      if (stopped) return false;
       if (ring_done()) return r == rings;
     }
     return true;
   }
+
+  /// Occupied cells.
+  std::size_t occupied() const { return buckets_.size(); }
 
   /// The same for the cells within `ring` cells of q's cell.
   template <class F>
@@ -215,6 +229,37 @@ class hash_grid {
   std::vector<std::uint32_t> vals_;
   std::size_t mask_ = 0;
   std::vector<std::vector<std::uint32_t>> buckets_;
+};
+
+/// Points in hash grids of cells h, 4h, 16h, ... up to `top`: a search takes the finest on which
+/// its box spans a few cells, so a large ball over a set whose spacing varies much (a refined
+/// surface in a coarse model) reads a few cells of a coarse level instead of many of a fine one.
+/// Ids come as from that level's hash_grid (visit, visit_rings, visit_ring).
+template <std::size_t D>
+class grid_levels {
+ public:
+  grid_levels(const point<D>& origin, double h, double top) {
+    levels_.emplace_back(origin, h);
+    for (double c = 4 * h; c < 4 * top && levels_.size() < 12; c *= 4) levels_.emplace_back(origin, c);
+  }
+  void insert(std::uint32_t id, const point<D>& p) {
+    for (auto& g : levels_) g.insert(id, p);
+  }
+  const hash_grid<D>& finest() const { return levels_.front(); }
+  /// The finest level on which [lo, hi] spans at most `span` cells along every axis (the
+  /// coarsest if none).
+  const hash_grid<D>& for_box(const point<D>& lo, const point<D>& hi, long span = 8) const {
+    for (const auto& g : levels_) {
+      const auto a = g.cell_of(lo), b = g.cell_of(hi);
+      bool fits = true;
+      for (std::size_t k = 0; k < D; ++k) fits = fits && b[k] - a[k] < span;
+      if (fits) return g;
+    }
+    return levels_.back();
+  }
+
+ private:
+  std::vector<hash_grid<D>> levels_;
 };
 
 }  // namespace gsse
