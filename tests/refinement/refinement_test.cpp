@@ -380,6 +380,16 @@ void cavities_match(const plc<D>& p, double size, const std::vector<point<D>>& a
   for (auto& f : split) f = f * b.faces.size() / 1000;
   const auto c = conformer::resume(p, b, added, split, co);
   const auto lc = conformer::label(c, p, 1);
+  // the labels carried from the boundary before (each facet's or edge's sides) are label()'s
+  BOOST_TEST((conformer::label_refined(c, p, b, l, 2).side == lc.side), p.source << ": carried labels differ");
+  {
+    // a source whose faces had different sides is labelled again from scratch
+    BOOST_REQUIRE(std::count(b.face_source.begin(), b.face_source.end(), b.face_source[0]) >= 2);
+    auto odd = l;
+    odd.side[0] = {99, 99};
+    const auto again = conformer::label_refined(c, p, b, odd, 2);
+    BOOST_TEST((again.side == lc.side), p.source << ": a mixed source was not labelled again");
+  }
   std::size_t removed = 0, made = 0, before = 0;
   for (const auto& r : cells) before += r.size();
   BOOST_REQUIRE(refinement::remesh_cavities(b, c, l, lc, cells, 2, &removed, &made));

@@ -1796,18 +1796,35 @@ class state3 : public state<3> {
       wanted[it->second].push_back(T);
     }
     conform_segments();
-    std::vector<std::uint32_t> all(facets_.size());
-    std::iota(all.begin(), all.end(), 0u);
-    triangulate_all(all);
+    // a facet whose vertices are those `prev` triangulated keeps prev's triangles (the
+    // triangulation is a function of the vertex set) and its pairs are known not flat (prev's
+    // run ended with none, and added points only empty fewer spheres): only the facets the
+    // subsegment splits above changed are triangulated and checked again, in the first round
+    std::map<std::uint32_t, std::vector<std::array<vertex_id, 3>>> had;  // by input facet, in prev's order
+    for (std::size_t k = 0; k < prev.faces.size(); ++k) had[prev.face_source[k]].push_back(prev.faces[k]);
+    if (prev.meshed_sides.size() == facets_.size()) meshed_ = prev.meshed_sides;
+    std::vector<std::size_t> seen(facets_.size(), 0);
+    std::vector<std::uint32_t> fresh;
+    for (std::uint32_t f = 0; f < facets_.size(); ++f) {
+      auto it = had.find(facets_[f].source);
+      std::vector<vertex_id> vs;
+      if (it != had.end())
+        for (const auto& T : it->second) vs.insert(vs.end(), T.begin(), T.end());
+      std::sort(vs.begin(), vs.end());
+      vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+      if (!vs.empty() && vs == facet_vertices(f)) {
+        adopt(f, it->second);
+        seen[f] = vertex_count(f);
+      } else {
+        fresh.push_back(f);
+      }
+    }
+    triangulate_all(fresh);
     // every subfacet `prev` had was clean (neither encroached nor too large) against its points:
     // only the points added since are checked against those (encroachers()), as within a run
     {
-      std::map<std::uint32_t, std::vector<std::array<vertex_id, 3>>> had;
-      for (std::size_t k = 0; k < prev.faces.size(); ++k) {
-        auto T = prev.faces[k];
-        std::sort(T.begin(), T.end());
-        had[prev.face_source[k]].push_back(T);
-      }
+      for (auto& [src, Ts] : had)
+        for (auto& T : Ts) std::sort(T.begin(), T.end());
       for (auto& S : facets_) {
         auto it = had.find(S.source);
         if (it == had.end() || S.checked) continue;
@@ -1826,12 +1843,25 @@ class state3 : public state<3> {
         if (std::binary_search(Ts.begin(), Ts.end(), T)) first.push_back({f, t, no_vertex});
       }
     }
-    return rounds(first);
+    return rounds(first, std::move(seen));
+  }
+
+  /// Facet f takes the triangles `ts` of an earlier triangulation of its present vertices, as
+  /// triangulate(f) would have made them.
+  void adopt(std::uint32_t f, const std::vector<std::array<vertex_id, 3>>& ts) {
+    auto& S = facets_[f];
+    S.checked = false;
+    S.triangles = ts;
+    S.boundary_size = boundary_size(f);
+    S.wrapped = facet_vertices(f);
+    index_triangles(f);
   }
 
   /// Rounds until no subfacet is split; `first` (sorted by facet and triangle) joins the first.
-  boundary<3> rounds(std::vector<split_candidate> first) {
-    std::vector<std::size_t> seen(facets_.size(), 0);
+  /// `seen`: per facet, its vertex count when last triangulated and checked for flat pairs (0:
+  /// never; the size of facets_ or empty).
+  boundary<3> rounds(std::vector<split_candidate> first, std::vector<std::size_t> seen = {}) {
+    seen.resize(facets_.size(), 0);
     const bool trace = trace_on_;
     for (;;) {
       ++out_.rounds;
@@ -1865,6 +1895,7 @@ class state3 : public state<3> {
         out_.face_source.push_back(facets_[f].source);
       }
     out_.protect = ball_;
+    out_.meshed_sides = meshed_;
     return std::move(out_);
   }
 

@@ -490,10 +490,42 @@ std::vector<int> locate_impl(const boundary<D>& b, const labelling& l, const std
   return r;
 }
 
+template <std::size_t D>
+labelling label_refined_impl(const boundary<D>& b, const plc<D>& p, const boundary<D>& before, const labelling& l,
+                             unsigned threads) {
+  // the sides every face of a source (PLC edge or facet) had, or none if they differ (a facet
+  // with a wall standing on it); the faces of one source are oriented alike (triangulated
+  // counter-clockwise in one projection or frame; chains in order)
+  if (l.side.size() != before.faces.size() || before.face_source.size() != before.faces.size()) return label_impl(b, p, threads);
+  constexpr std::array<int, 2> mixed{-2, -2};
+  std::map<std::uint32_t, std::array<int, 2>> sides;
+  for (std::size_t f = 0; f < before.faces.size(); ++f) {
+    auto [it, fresh] = sides.try_emplace(before.face_source[f], l.side[f]);
+    if (!fresh && it->second != l.side[f]) it->second = mixed;
+  }
+  labelling out;
+  out.regions = l.regions;
+  out.side.resize(b.faces.size());
+  for (std::size_t f = 0; f < b.faces.size(); ++f) {
+    auto it = sides.find(b.face_source[f]);
+    if (it == sides.end() || it->second == mixed) return label_impl(b, p, threads);
+    out.side[f] = it->second;
+  }
+  return out;
+}
+
 }  // namespace
 
 labelling label(const boundary<2>& b, const plc<2>& p, unsigned threads) { return label_impl(b, p, threads); }
 labelling label(const boundary<3>& b, const plc<3>& p, unsigned threads) { return label_impl(b, p, threads); }
+labelling label_refined(const boundary<2>& b, const plc<2>& p, const boundary<2>& before, const labelling& l,
+                        unsigned threads) {
+  return label_refined_impl(b, p, before, l, threads);
+}
+labelling label_refined(const boundary<3>& b, const plc<3>& p, const boundary<3>& before, const labelling& l,
+                        unsigned threads) {
+  return label_refined_impl(b, p, before, l, threads);
+}
 std::vector<int> locate(const boundary<2>& b, const labelling& l, const std::vector<point2>& q) {
   return locate_impl(b, l, q);
 }

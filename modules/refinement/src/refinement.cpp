@@ -834,7 +834,7 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     try {
       auto b2 = conformer::resume(p, b, pl.add, pl.split, co);
       st.conform_seconds += lap();
-      auto l2 = conformer::label(b2, p, o.threads);
+      auto l2 = conformer::label_refined(b2, p, b, l, o.threads);
       st.label_seconds += lap();
       // remesh_cavities changes cells and todo only when it succeeds, and a full meshing that
       // throws assigns nothing: the last good mesh survives a failed round without a copy

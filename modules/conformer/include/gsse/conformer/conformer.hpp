@@ -56,6 +56,10 @@ struct boundary {
   // 3D: per PLC point, the radius of its protecting ball (an acute vertex: no point is inserted
   // inside, shells go on outside), 0 for none; empty in 2D
   std::vector<double> protect;
+  // 3D: per facet of the conformer (input facets merged as by options::merge_coplanar), whether
+  // its positive / negative side lies in a segment, if the conformer needed to know (slanted
+  // facets); resume() takes it over instead of labelling again. Empty otherwise.
+  std::vector<std::array<bool, 2>> meshed_sides;
 };
 
 /// Conforms the PLC's boundary with respect to itself and `volume` points (which are kept as

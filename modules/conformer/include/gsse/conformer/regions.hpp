@@ -37,6 +37,16 @@ struct labelling {
 labelling label(const boundary<2>& b, const plc<2>& p, unsigned threads = 1);
 labelling label(const boundary<3>& b, const plc<3>& p, unsigned threads = 1);
 
+/// Labels b, a refinement of `before` (a resume() of it: the same PLC edges and facets, split
+/// finer), from before's labelling l: where all faces of a PLC edge (2D) or facet (3D) had the
+/// same sides, the new faces of it take them (every point of the facet had them); if any source
+/// had faces with different sides (a facet with another standing on it), label(b, p, threads).
+/// The result is label(b, p, threads)'s, without its shell building and ray casting.
+labelling label_refined(const boundary<2>& b, const plc<2>& p, const boundary<2>& before, const labelling& l,
+                        unsigned threads = 1);
+labelling label_refined(const boundary<3>& b, const plc<3>& p, const boundary<3>& before, const labelling& l,
+                        unsigned threads = 1);
+
 /// Region index of each query point (exterior if outside every segment or in a hole), for
 /// classifying volume points; exact ray casting against the labelled faces.
 std::vector<int> locate(const boundary<2>& b, const labelling& l, const std::vector<point2>& q);
