@@ -397,6 +397,27 @@ void cavities_match(const plc<D>& p, double size, const std::vector<point<D>>& a
   BOOST_TEST(removed < before / 2, p.source << ": " << removed << " of " << before << " cells re-meshed");
   const auto full = pl::mesh_segments<D>::wrap(c, lc, 1);
   BOOST_TEST((canonical<D>(cells) == canonical<D>(full)), p.source << ": the cavities' cells differ from a full meshing");
+  // two rounds more with the circumballs kept from round to round (as refine() keeps them): a
+  // kept ball that were wrong would leave a cell that should have gone
+  refinement::balls_by_region<D> balls(cells.size());
+  for (std::size_t r = 0; r < cells.size(); ++r) balls[r].resize(cells[r].size());
+  auto b1 = c;
+  auto l1 = lc;
+  for (int round = 0; round < 2; ++round) {
+    std::vector<point<D>> more;
+    for (const auto& q : added) {
+      point<D> x = q;
+      x[0] += 0.013 * (round + 1);
+      x[1] -= 0.021 * (round + 1);
+      more.push_back(x);
+    }
+    const auto b2 = conformer::resume(p, b1, more, {b1.faces.size() / 3}, co);
+    const auto l2 = conformer::label(b2, p, 1);
+    BOOST_REQUIRE(refinement::remesh_cavities(b1, b2, l1, l2, cells, 2, nullptr, nullptr, nullptr, &balls));
+    BOOST_TEST((canonical<D>(cells) == canonical<D>(pl::mesh_segments<D>::wrap(b2, l2, 1))),
+               p.source << ": round " << round + 2 << " with kept balls differs from a full meshing");
+    b1 = b2, l1 = l2;
+  }
 }
 
 }  // namespace

@@ -155,9 +155,6 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
                    std::vector<std::vector<char>>* todo, double acute_guard) {
   plan<D> out;
   const auto& bp = b.points;
-  std::vector<sizing::aabb<D>> boxes(b.faces.size());
-  for (std::size_t f = 0; f < b.faces.size(); ++f) boxes[f] = face_box(bp, b.faces[f]);
-  const sizing::box_tree<D> tree(std::move(boxes), std::vector<double>(b.faces.size(), 0.0));
   // the cells in chunks, segment by segment: candidates are found in parallel and merged in
   // chunk order (deterministic)
   struct chunk {
@@ -346,23 +343,57 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
           r = distance(at, p[c[si]]);
         }
       }
-      candidate<D> x{at, r, static_cast<std::uint32_t>(faces[k].size()), 0, bad_shape};
-      // boundary faces whose closed ball holds the circumcentre (exact; a tie counts)
-      tree.visit([&](const sizing::aabb<D>& box) { return box.contains(at); },
-                 [&](std::uint32_t f) {
-                   const auto& F = b.faces[f];
-                   int s;
-                   if constexpr (D == 2)
-                     s = geometry::in_diametral(bp[F[0]], bp[F[1]], at);
-                   else
-                     s = geometry::in_equatorial(bp[F[0]], bp[F[1]], bp[F[2]], at);
-                   if (s >= 0) faces[k].push_back(f);
-                   return true;
-                 });
-      x.count = static_cast<std::uint32_t>(faces[k].size()) - x.first;
-      found[k].push_back(x);
+      found[k].push_back({at, r, 0, 0, bad_shape});
     }
   }, [&](std::size_t k) { return static_cast<double>(chunks[k].cells.size()); });
+  // the boundary faces whose closed ball holds a candidate (exact; a tie counts): the candidates
+  // in a tree, asked by every face's ball box (a pass over the faces; a tree over the faces,
+  // built every round, cost more than the round's few queries)
+  {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> who;  // (chunk, index)
+    std::vector<sizing::aabb<D>> spot;
+    for (std::uint32_t k = 0; k < found.size(); ++k)
+      for (std::uint32_t i = 0; i < found[k].size(); ++i) {
+        who.push_back({k, i});
+        spot.push_back({found[k][i].c, found[k][i].c});
+      }
+    if (!who.empty()) {
+      const sizing::box_tree<D> candidates(std::move(spot), std::vector<double>(who.size(), 0.0));
+      std::vector<std::size_t> pieces((b.faces.size() + piece - 1) / piece);
+      std::iota(pieces.begin(), pieces.end(), std::size_t{0});
+      std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> hits(pieces.size());  // (candidate, face)
+      for_each(execution::par(threads), pieces, [&](std::size_t q) {
+        for (std::size_t f = q * piece; f < std::min(b.faces.size(), (q + 1) * piece); ++f) {
+          const auto& F = b.faces[f];
+          const auto box = face_box(bp, F);
+          candidates.visit([&](const sizing::aabb<D>& x) {
+            for (std::size_t a = 0; a < D; ++a)
+              if (x.hi[a] < box.lo[a] || x.lo[a] > box.hi[a]) return false;
+            return true;
+          }, [&](std::uint32_t g) {
+            const point<D>& at = found[who[g].first][who[g].second].c;
+            int s;
+            if constexpr (D == 2)
+              s = geometry::in_diametral(bp[F[0]], bp[F[1]], at);
+            else
+              s = geometry::in_equatorial(bp[F[0]], bp[F[1]], bp[F[2]], at);
+            if (s >= 0) hits[q].push_back({g, static_cast<std::uint32_t>(f)});
+            return true;
+          });
+        }
+      });
+      std::vector<std::pair<std::uint32_t, std::uint32_t>> all_hits;
+      for (auto& h : hits) all_hits.insert(all_hits.end(), h.begin(), h.end());
+      std::sort(all_hits.begin(), all_hits.end());
+      for (std::size_t j = 0; j < all_hits.size();) {
+        const auto [k, i] = who[all_hits[j].first];
+        auto& x = found[k][i];
+        x.first = static_cast<std::uint32_t>(faces[k].size());
+        for (const auto g = all_hits[j].first; j < all_hits.size() && all_hits[j].first == g; ++j) faces[k].push_back(all_hits[j].second);
+        x.count = static_cast<std::uint32_t>(faces[k].size()) - x.first;
+      }
+    }
+  }
   // in order of decreasing circumradius (ties: by position), each at least its circumradius from
   // the points taken before it
   struct ref {
@@ -552,7 +583,7 @@ double cell_measure(const std::vector<point<D>>& p, const cell_t<D>& c) {
 template <std::size_t D>
 bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary<D>& b1, const conformer::labelling& l0,
                      const conformer::labelling& l1, cells_by_region<D>& cells, unsigned threads, std::size_t* removed_count,
-                     std::size_t* made_count, std::vector<std::vector<char>>* flags) {
+                     std::size_t* made_count, std::vector<std::vector<char>>* flags, balls_by_region<D>* balls) {
   const auto& p = b1.points;
   const std::size_t n0 = b0.points.size();
   if (p.size() < n0 || l0.regions.size() != l1.regions.size() || cells.size() != l1.regions.size()) return false;
@@ -576,6 +607,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     if (!old_keys.count(key_of<D>(b1.faces[f]))) came_faces.push_back(f);
   if (p.size() == n0 && gone_faces.empty() && came_faces.empty()) return true;
   if (flags && flags->size() != cells.size()) return false;
+  if (balls && balls->size() != cells.size()) return false;
   // 1. the cavities: cells whose perturbed ball holds a new point, or that rest on a gone face
   const point_bins<D> bins(p, n0);
   struct chunk {
@@ -597,15 +629,24 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         for (const auto& g : faces_into<D>(c))
           if (gone.count(key_of<D>(g))) out = 1;
       if (out || p.size() == n0) continue;
-      point<D> at;
-      double r;
-      if (!circumball(p, c, at, r)) {
+      cell_ball<D> own;
+      cell_ball<D>& ball = balls ? (*balls)[ch.region][i] : own;
+      if (ball.pad == cell_ball<D>::unknown) {
+        double r;
+        if (!circumball(p, c, ball.at, r)) {
+          ball.pad = cell_ball<D>::flat;
+        } else {
+          double m = 0;
+          for (double x : ball.at) m = std::max(m, std::abs(x));
+          ball.pad = r * (1 + 1e-8) + 64 * std::numeric_limits<double>::epsilon() * (m + r) + 1e-300;
+        }
+      }
+      if (ball.pad == cell_ball<D>::flat) {
         out = 1;  // flat in double precision: re-meshed, which is always safe
         continue;
       }
-      double m = 0;
-      for (double x : at) m = std::max(m, std::abs(x));
-      const double pad = r * (1 + 1e-8) + 64 * std::numeric_limits<double>::epsilon() * (m + r) + 1e-300;
+      const point<D>& at = ball.at;
+      const double pad = ball.pad;
       point<D> lo, hi;
       for (std::size_t k = 0; k < D; ++k) lo[k] = at[k] - pad, hi[k] = at[k] + pad;
       bool oriented = false;
@@ -770,6 +811,14 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     next.reserve(cells[r].size() + add);
     for (std::size_t i = 0; i < cells[r].size(); ++i)
       if (!dead[r][i]) next.push_back(cells[r][i]);
+    if (balls) {  // the survivors' balls, then unknown for every new cell
+      auto& bl = (*balls)[r];
+      std::size_t w = 0;
+      for (std::size_t i = 0; i < cells[r].size(); ++i)
+        if (!dead[r][i]) bl[w++] = bl[i];
+      bl.resize(w);
+      bl.resize(w + add);
+    }
     if (flags) {  // the survivors' flags, then 1 (not looked at yet) for every new cell
       auto& fl = (*flags)[r];
       std::size_t w = 0;
@@ -799,6 +848,12 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     return t;
   };
   auto todo = all_todo(cells);
+  auto no_balls = [](const cells_by_region<D>& c) {
+    balls_by_region<D> b(c.size());
+    for (std::size_t r = 0; r < c.size(); ++r) b[r].resize(c[r].size());
+    return b;
+  };
+  auto balls = no_balls(cells);
   for (;;) {
     std::function<double(const point<D>&)> size;
     if constexpr (D == 2)
@@ -839,11 +894,12 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       // remesh_cavities changes cells and todo only when it succeeds, and a full meshing that
       // throws assigns nothing: the last good mesh survives a failed round without a copy
       std::size_t removed = 0, made = 0;
-      if (remesh_cavities(b, b2, l, l2, cells, o.threads, &removed, &made, &todo)) {
+      if (remesh_cavities(b, b2, l, l2, cells, o.threads, &removed, &made, &todo, &balls)) {
         st.cavity_cells += removed, st.cavity_made += made;
       } else {
         cells = mesh.wrap(b2, l2);
         todo = all_todo(cells);
+        balls = no_balls(cells);
         ++st.full_remeshes;
       }
       st.mesh_seconds += lap();
@@ -867,10 +923,10 @@ template plan<3> plan_round<3>(const cells_by_region<3>&, const conformer::bound
                                std::vector<std::vector<char>>*, double);
 template bool remesh_cavities<2>(const conformer::boundary<2>&, const conformer::boundary<2>&, const conformer::labelling&,
                                  const conformer::labelling&, cells_by_region<2>&, unsigned, std::size_t*, std::size_t*,
-                                 std::vector<std::vector<char>>*);
+                                 std::vector<std::vector<char>>*, balls_by_region<2>*);
 template bool remesh_cavities<3>(const conformer::boundary<3>&, const conformer::boundary<3>&, const conformer::labelling&,
                                  const conformer::labelling&, cells_by_region<3>&, unsigned, std::size_t*, std::size_t*,
-                                 std::vector<std::vector<char>>*);
+                                 std::vector<std::vector<char>>*, balls_by_region<3>*);
 template domain<2> refine<2>(const plc<2>&, conformer::boundary<2>&, conformer::labelling&, cells_by_region<2>, const conformer::options&,
                              const options&, const meshers<2>&, stats&);
 template domain<3> refine<3>(const plc<3>&, conformer::boundary<3>&, conformer::labelling&, cells_by_region<3>, const conformer::options&,

@@ -116,11 +116,22 @@ struct meshers {
 /// regions. Returns false and leaves `cells` alone when a cavity does not close or fill its
 /// volume (the caller then meshes from scratch). `removed`: cells deleted, `made`: cells made.
 /// `flags` (one per cell, optional) follow their cells; every new cell gets 1.
+/// `balls` (optional, one per cell): each cell's circumball as the cavity search bounds it,
+/// kept from round to round (a cell never changes); a new cell gets ball::unknown.
+template <std::size_t D>
+struct cell_ball {
+  static constexpr double unknown = -1, flat = -2;
+  point<D> at{};
+  double pad = unknown;  // the ball's radius padded by its rounding; unknown or flat
+};
+template <std::size_t D>
+using balls_by_region = std::vector<std::vector<cell_ball<D>>>;
+
 template <std::size_t D>
 bool remesh_cavities(const conformer::boundary<D>& before, const conformer::boundary<D>& after,
                      const conformer::labelling& labels_before, const conformer::labelling& labels_after,
                      cells_by_region<D>& cells, unsigned threads, std::size_t* removed = nullptr, std::size_t* made = nullptr,
-                     std::vector<std::vector<char>>* flags = nullptr);
+                     std::vector<std::vector<char>>* flags = nullptr, balls_by_region<D>* balls = nullptr);
 
 /// Refines `cells`, the mesh of boundary `b` (labelled `l`) of PLC `p`, until no element exceeds
 /// the bound except the excepted ones, or the round or point cap is reached (stats says which).
