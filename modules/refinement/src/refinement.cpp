@@ -589,22 +589,45 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   if (p.size() < n0 || l0.regions.size() != l1.regions.size() || cells.size() != l1.regions.size()) return false;
   for (std::size_t r = 0; r < l1.regions.size(); ++r)
     if (l0.regions[r].number != l1.regions[r].number) return false;
-  // the boundary faces that went (split) and came
-  face_set<D> old_keys, new_keys;
-  old_keys.reserve(b0.faces.size()), new_keys.reserve(b1.faces.size());
-  for (const auto& F : b0.faces) old_keys.insert(key_of<D>(F));
-  for (const auto& F : b1.faces) new_keys.insert(key_of<D>(F));
+  // the boundary faces that went (split) and came. The conformer lists faces source by source
+  // (PLC edge or facet), in the same order each round, and a source it did not touch keeps its
+  // list: where the runs of sources match, only runs that differ are compared as sets
   face_set<D> gone;
   std::vector<char> on_gone(p.size(), 0);
   std::vector<std::size_t> gone_faces, came_faces;
-  for (std::size_t f = 0; f < b0.faces.size(); ++f)
-    if (!new_keys.count(key_of<D>(b0.faces[f]))) {
-      gone.insert(key_of<D>(b0.faces[f]));
-      gone_faces.push_back(f);
-      for (auto v : b0.faces[f]) on_gone[v] = 1;
-    }
-  for (std::size_t f = 0; f < b1.faces.size(); ++f)
-    if (!old_keys.count(key_of<D>(b1.faces[f]))) came_faces.push_back(f);
+  auto compare = [&](std::size_t a0, std::size_t e0, std::size_t a1, std::size_t e1) {
+    if (e0 - a0 == e1 - a1 && std::equal(b0.faces.begin() + static_cast<long>(a0), b0.faces.begin() + static_cast<long>(e0),
+                                         b1.faces.begin() + static_cast<long>(a1)))
+      return;
+    face_set<D> old_keys, new_keys;
+    for (std::size_t f = a0; f < e0; ++f) old_keys.insert(key_of<D>(b0.faces[f]));
+    for (std::size_t f = a1; f < e1; ++f) new_keys.insert(key_of<D>(b1.faces[f]));
+    for (std::size_t f = a0; f < e0; ++f)
+      if (!new_keys.count(key_of<D>(b0.faces[f]))) {
+        gone.insert(key_of<D>(b0.faces[f]));
+        gone_faces.push_back(f);
+        for (auto v : b0.faces[f]) on_gone[v] = 1;
+      }
+    for (std::size_t f = a1; f < e1; ++f)
+      if (!old_keys.count(key_of<D>(b1.faces[f]))) came_faces.push_back(f);
+  };
+  auto runs = [](const conformer::boundary<D>& b) {
+    std::vector<std::size_t> r;  // starts of the runs of equal sources, then the end
+    for (std::size_t f = 0; f < b.face_source.size(); ++f)
+      if (f == 0 || b.face_source[f] != b.face_source[f - 1]) r.push_back(f);
+    r.push_back(b.face_source.size());
+    return r;
+  };
+  const auto r0 = runs(b0), r1 = runs(b1);
+  bool aligned = b0.face_source.size() == b0.faces.size() && b1.face_source.size() == b1.faces.size() && r0.size() == r1.size();
+  std::set<std::uint32_t> sources;
+  for (std::size_t i = 0; aligned && i + 1 < r0.size(); ++i)
+    aligned = b0.face_source[r0[i]] == b1.face_source[r1[i]] && sources.insert(b0.face_source[r0[i]]).second;
+  if (aligned) {
+    for (std::size_t i = 0; i + 1 < r0.size(); ++i) compare(r0[i], r0[i + 1], r1[i], r1[i + 1]);
+  } else {
+    compare(0, b0.faces.size(), 0, b1.faces.size());
+  }
   if (p.size() == n0 && gone_faces.empty() && came_faces.empty()) return true;
   if (flags && flags->size() != cells.size()) return false;
   if (balls && balls->size() != cells.size()) return false;
