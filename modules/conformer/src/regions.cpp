@@ -477,11 +477,14 @@ std::vector<int> locate_impl(const boundary<D>& b, const labelling& l, const std
   std::vector<int> r(q.size(), exterior);
   if (q.empty()) return r;
   const double len = 4 * diameter(b.points);
-  const face_index<D> index(b);
+  // a few points cast their rays against every face: cheaper than building the index (the
+  // refinement's late rounds locate a handful of points on a boundary of 1e5 faces)
+  std::optional<face_index<D>> index;
+  if (q.size() > 8) index.emplace(b);
   for (std::size_t i = 0; i < q.size(); ++i) {
     long hit;
     try {
-      hit = first_side(b, q[i], point<D>{}, -1, len, "point", no_vertex, &index);
+      hit = first_side(b, q[i], point<D>{}, -1, len, "point", no_vertex, index ? &*index : nullptr);
     } catch (const conform_error&) {
       continue;  // on the boundary: not a volume point
     }
