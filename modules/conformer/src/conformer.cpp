@@ -1813,7 +1813,7 @@ class state3 : public state<3> {
       std::sort(vs.begin(), vs.end());
       vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
       if (!vs.empty() && vs == facet_vertices(f)) {
-        adopt(f, it->second);
+        adopt(f, it->second, std::move(vs));
         seen[f] = vertex_count(f);
       } else {
         fresh.push_back(f);
@@ -1846,14 +1846,14 @@ class state3 : public state<3> {
     return rounds(first, std::move(seen));
   }
 
-  /// Facet f takes the triangles `ts` of an earlier triangulation of its present vertices, as
-  /// triangulate(f) would have made them.
-  void adopt(std::uint32_t f, const std::vector<std::array<vertex_id, 3>>& ts) {
+  /// Facet f takes the triangles `ts` of an earlier triangulation of its present vertices `vs`
+  /// (facet_vertices(f)), as triangulate(f) would have made them.
+  void adopt(std::uint32_t f, const std::vector<std::array<vertex_id, 3>>& ts, std::vector<vertex_id> vs) {
     auto& S = facets_[f];
     S.checked = false;
     S.triangles = ts;
     S.boundary_size = boundary_size(f);
-    S.wrapped = facet_vertices(f);
+    S.wrapped = std::move(vs);
     index_triangles(f);
   }
 

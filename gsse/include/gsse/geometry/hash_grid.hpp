@@ -49,7 +49,7 @@ class hash_grid {
   /// ids and true from it stops the scan (a search that takes the nearest find reads a few cells
   /// of a large ball, not all of them). If f returns bool, false stops the scan at once. Returns
   /// false if stopped. Once the rings so far span more cells than are occupied, the rest of the
-  /// box comes as one last ring: every occupied cell in it, by key.
+  /// box comes as one last ring: every occupied cell in it, in the table's order.
   template <class F, class Done>
   bool visit_rings(const point<D>& q, const point<D>& lo, const point<D>& hi, F&& f, Done&& ring_done) const {
     const cell a = cell_of(lo), b = cell_of(hi), c0 = cell_of(q);
