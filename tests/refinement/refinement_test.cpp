@@ -326,17 +326,12 @@ BOOST_AUTO_TEST_CASE(deterministic_for_any_thread_count) {
   }
 }
 
-// conformer::resume refines: every point keeps its id, position and home; requested faces are
-// split; the result is conforming (no encroached face, the exact post-check).
-BOOST_AUTO_TEST_CASE(resume_only_refines_the_boundary) {
-  const auto p = stack(1, {0, 0.5, 1}, true);
-  conformer::options co;
-  co.size = 0.3;
-  const auto b = conformer::conform(p, {}, co);
-  BOOST_REQUIRE(conformer::encroached(b).empty());
-  const std::vector<point3> added{turn(point3{0.5, 0.5, 0.25}), turn(point3{0.2, 0.7, 0.75})};
-  const std::vector<std::size_t> split{0, b.faces.size() / 2};
-  const auto c = conformer::resume(p, b, added, split, co);
+namespace {
+
+/// c refines b: every point of b keeps its id, position and home, the `added` points follow them,
+/// the faces `split` of b are gone, and c is conforming (no encroached face, the exact post-check).
+void refines(const conformer::boundary<3>& b, const conformer::boundary<3>& c, const std::vector<point3>& added,
+             const std::vector<std::size_t>& split) {
   BOOST_REQUIRE(c.points.size() > b.points.size() + added.size());
   for (std::size_t v = 0; v < b.points.size(); ++v) {
     BOOST_TEST((c.points[v] == b.points[v]));
@@ -344,7 +339,6 @@ BOOST_AUTO_TEST_CASE(resume_only_refines_the_boundary) {
   }
   for (std::size_t k = 0; k < added.size(); ++k) BOOST_TEST((c.points[b.points.size() + k] == added[k]));
   BOOST_TEST(conformer::encroached(c).empty());
-  // the requested faces are gone
   for (auto f : split) {
     auto F = b.faces[f];
     std::sort(F.begin(), F.end());
@@ -353,6 +347,49 @@ BOOST_AUTO_TEST_CASE(resume_only_refines_the_boundary) {
       return G == F;
     });
     BOOST_TEST(!still);
+  }
+}
+
+}  // namespace
+
+// conformer::resume refines: every point keeps its id, position and home; requested faces are
+// split; the result is conforming.
+BOOST_AUTO_TEST_CASE(resume_only_refines_the_boundary) {
+  const auto p = stack(1, {0, 0.5, 1}, true);
+  conformer::options co;
+  co.size = 0.3;
+  const auto b = conformer::conform(p, {}, co);
+  BOOST_REQUIRE(conformer::encroached(b).empty());
+  const std::vector<point3> added{turn(point3{0.5, 0.5, 0.25}), turn(point3{0.2, 0.7, 0.75})};
+  const std::vector<std::size_t> split{0, b.faces.size() / 2};
+  refines(b, conformer::resume(p, b, added, split, co), added, split);
+}
+
+// conformer::session, as refine() uses it: each next() refines the boundary it is handed, whether
+// it goes on from its own state (handed what it returned last) or resumes afresh (handed another
+// boundary), on the rotated stack (slanted facets) with a size and without
+BOOST_AUTO_TEST_CASE(session_refines_round_after_round) {
+  const auto p = stack(1, {0, 0.5, 1}, true);
+  for (double size : {0.3, 0.0}) {
+    conformer::options co;
+    co.size = size;
+    const auto b0 = conformer::conform(p, {}, co);
+    conformer::session<3> s(p, co);
+    std::vector<conformer::boundary<3>> seen{b0};
+    for (int round = 0; round < 4; ++round) {
+      const auto& b = seen.back();
+      const std::vector<point3> added{turn(point3{0.5 - 0.07 * round, 0.5, 0.25}), turn(point3{0.2, 0.7 - 0.05 * round, 0.75})};
+      const std::vector<std::size_t> split{b.faces.size() / 3, b.faces.size() / 2 + static_cast<std::size_t>(round)};
+      auto c = s.next(b, added, split);
+      refines(b, c, added, split);
+      seen.push_back(std::move(c));
+    }
+    // handed an earlier boundary: resumes from that one, and goes on from there
+    const std::vector<point3> added{turn(point3{0.61, 0.4, 0.3})};
+    auto c = s.next(seen[1], added, {0});
+    refines(seen[1], c, added, {0});
+    auto d = s.next(c, added, {1});
+    refines(c, d, added, {1});
   }
 }
 
@@ -403,6 +440,7 @@ void cavities_match(const plc<D>& p, double size, const std::vector<point<D>>& a
   for (std::size_t r = 0; r < cells.size(); ++r) balls[r].resize(cells[r].size());
   auto b1 = c;
   auto l1 = lc;
+  conformer::session<D> rounds(p, co);  // as refine() resumes the boundary
   for (int round = 0; round < 2; ++round) {
     std::vector<point<D>> more;
     for (const auto& q : added) {
@@ -411,7 +449,7 @@ void cavities_match(const plc<D>& p, double size, const std::vector<point<D>>& a
       x[1] -= 0.021 * (round + 1);
       more.push_back(x);
     }
-    const auto b2 = conformer::resume(p, b1, more, {b1.faces.size() / 3}, co);
+    const auto b2 = rounds.next(b1, more, {b1.faces.size() / 3});
     const auto l2 = conformer::label(b2, p, 1);
     BOOST_REQUIRE(refinement::remesh_cavities(b1, b2, l1, l2, cells, 2, nullptr, nullptr, nullptr, &balls));
     BOOST_TEST((canonical<D>(cells) == canonical<D>(pl::mesh_segments<D>::wrap(b2, l2, 1))),

@@ -192,8 +192,10 @@ class state {
       E.chain.insert(E.chain.end(), mid.begin(), mid.end());
       E.chain.push_back(E.v);
     }
-    for (const auto& q : added) push_point(q, {home::free, 0});
+    for (const auto& q : added) add_free(q);
   }
+  /// A free point (session::next()'s added points), as restore() adds them.
+  vertex_id add_free(const point<D>& q) { return push_point(q, {home::free, 0}); }
   virtual void on_facet(std::uint32_t, vertex_id) {}
   virtual ~state() = default;
 
@@ -1782,12 +1784,13 @@ class state3 : public state<3> {
 
   void on_facet(std::uint32_t f, vertex_id v) override { facets_.at(f).interior.push_back(v); }
 
-  /// resume(): after restore(), the subfacets `split` of `prev` (by index) are split in the first
-  /// round as too large ones are (circumcentre, or the subsegment it encroaches), then rounds.
-  boundary<3> resume_run(const boundary<3>& prev, const std::vector<std::size_t>& split) {
+  /// The subfacets `split` of `prev` (indices into prev.faces) by facet, as sorted corner triples:
+  /// rounds() splits those still there in its first round.
+  using wanted_faces = std::map<std::uint32_t, std::vector<std::array<vertex_id, 3>>>;
+  wanted_faces wanted_of(const boundary<3>& prev, const std::vector<std::size_t>& split) const {
     std::map<std::uint32_t, std::uint32_t> facet_of;  // input facet naming a facet -> facet
     for (std::uint32_t f = 0; f < facets_.size(); ++f) facet_of[facets_[f].source] = f;
-    std::map<std::uint32_t, std::vector<std::array<vertex_id, 3>>> wanted;
+    wanted_faces wanted;
     for (auto k : split) {
       auto it = facet_of.find(prev.face_source.at(k));
       if (it == facet_of.end()) continue;
@@ -1795,6 +1798,13 @@ class state3 : public state<3> {
       std::sort(T.begin(), T.end());
       wanted[it->second].push_back(T);
     }
+    return wanted;
+  }
+
+  /// resume(): after restore(), the subfacets `split` of `prev` (by index) are split in the first
+  /// round as too large ones are (circumcentre, or the subsegment it encroaches), then rounds.
+  boundary<3> resume_run(const boundary<3>& prev, const std::vector<std::size_t>& split, bool keep = false) {
+    auto wanted = wanted_of(prev, split);
     conform_segments();
     // a facet whose vertices are those `prev` triangulated keeps prev's triangles (the
     // triangulation is a function of the vertex set) and its pairs are known not flat (prev's
@@ -1803,8 +1813,7 @@ class state3 : public state<3> {
     std::map<std::uint32_t, std::vector<std::array<vertex_id, 3>>> had;  // by input facet, in prev's order
     for (std::size_t k = 0; k < prev.faces.size(); ++k) had[prev.face_source[k]].push_back(prev.faces[k]);
     if (prev.meshed_sides.size() == facets_.size()) meshed_ = prev.meshed_sides;
-    std::vector<std::size_t> seen(facets_.size(), 0);
-    std::vector<std::uint32_t> fresh;
+    seen_.assign(facets_.size(), 0);
     for (std::uint32_t f = 0; f < facets_.size(); ++f) {
       auto it = had.find(facets_[f].source);
       std::vector<vertex_id> vs;
@@ -1814,36 +1823,32 @@ class state3 : public state<3> {
       vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
       if (!vs.empty() && vs == facet_vertices(f)) {
         adopt(f, it->second, std::move(vs));
-        seen[f] = vertex_count(f);
-      } else {
-        fresh.push_back(f);
+        seen_[f] = vertex_count(f);
       }
     }
-    triangulate_all(fresh);
     // every subfacet `prev` had was clean (neither encroached nor too large) against its points:
     // only the points added since are checked against those (encroachers()), as within a run
-    {
-      for (auto& [src, Ts] : had)
-        for (auto& T : Ts) std::sort(T.begin(), T.end());
-      for (auto& S : facets_) {
-        auto it = had.find(S.source);
-        if (it == had.end() || S.checked) continue;
-        S.clean = std::move(it->second);
-        std::sort(S.clean.begin(), S.clean.end());
-      }
-      checked_upto_ = prev.points.size();
+    for (auto& [src, Ts] : had)
+      for (auto& T : Ts) std::sort(T.begin(), T.end());
+    for (auto& S : facets_) {
+      auto it = had.find(S.source);
+      if (it == had.end() || S.checked) continue;
+      S.clean = std::move(it->second);
+      std::sort(S.clean.begin(), S.clean.end());
     }
-    std::vector<split_candidate> first;
-    for (auto& [f, Ts] : wanted) {
-      std::sort(Ts.begin(), Ts.end());
-      const auto& tri = facets_[f].triangles;
-      for (std::uint32_t t = 0; t < tri.size(); ++t) {
-        auto T = tri[t];
-        std::sort(T.begin(), T.end());
-        if (std::binary_search(Ts.begin(), Ts.end(), T)) first.push_back({f, t, no_vertex});
-      }
-    }
-    return rounds(first, std::move(seen));
+    checked_upto_ = prev.points.size();
+    return rounds(std::move(wanted), keep);
+  }
+
+  /// session::next(): goes on from where the last rounds() ended (`prev` is what it returned):
+  /// the `added` free points, then the subfacets `split` of `prev` in the first round, as
+  /// resume_run() does after rebuilding all of this. Nothing is rebuilt: the grids, chains, facet
+  /// triangulations and what the last check found clean carry over, and the checks of this round
+  /// read only the points added since, as the rounds of one run do.
+  boundary<3> continue_run(const boundary<3>& prev, const std::vector<point3>& added, const std::vector<std::size_t>& split) {
+    auto wanted = wanted_of(prev, split);
+    for (const auto& q : added) add_free(q);
+    return rounds(std::move(wanted), true);
   }
 
   /// Facet f takes the triangles `ts` of an earlier triangulation of its present vertices `vs`
@@ -1857,27 +1862,36 @@ class state3 : public state<3> {
     index_triangles(f);
   }
 
-  /// Rounds until no subfacet is split; `first` (sorted by facet and triangle) joins the first.
-  /// `seen`: per facet, its vertex count when last triangulated and checked for flat pairs (0:
-  /// never; the size of facets_ or empty).
-  boundary<3> rounds(std::vector<split_candidate> first, std::vector<std::size_t> seen = {}) {
-    seen.resize(facets_.size(), 0);
+  /// Rounds until no subfacet is split; the subfacets `wanted` (by facet, sorted corners) that
+  /// the first round's triangulations still have are split in it. seen_: per facet, its vertex
+  /// count when last triangulated and checked for flat pairs (0: never). keep: the state stays
+  /// for continue_run() (the result is a copy), else the result is moved out of it.
+  boundary<3> rounds(wanted_faces wanted = {}, bool keep = false) {
+    seen_.resize(facets_.size(), 0);
     const bool trace = trace_on_;
     for (;;) {
       ++out_.rounds;
       const std::size_t seg_splits = conform_segments();
       std::vector<std::uint32_t> changed;  // only facets whose vertex set changed
       for (std::uint32_t f = 0; f < facets_.size(); ++f)
-        if (vertex_count(f) != seen[f]) changed.push_back(f);
+        if (vertex_count(f) != seen_[f]) changed.push_back(f);
       triangulate_all(changed);
-      for (auto f : changed) seen[f] = vertex_count(f);
+      for (auto f : changed) seen_[f] = vertex_count(f);
       auto extra = flat_pairs(changed);
-      if (!first.empty()) {
-        extra.insert(extra.end(), first.begin(), first.end());
+      if (!wanted.empty()) {
+        for (auto& [f, Ts] : wanted) {
+          std::sort(Ts.begin(), Ts.end());
+          const auto& tri = facets_[f].triangles;
+          for (std::uint32_t t = 0; t < tri.size(); ++t) {
+            auto T = tri[t];
+            std::sort(T.begin(), T.end());
+            if (std::binary_search(Ts.begin(), Ts.end(), T)) extra.push_back({f, t, no_vertex});
+          }
+        }
         std::sort(extra.begin(), extra.end(), [](const split_candidate& x, const split_candidate& y) {
           return std::tuple(x.f, x.t, !x.flat) < std::tuple(y.f, y.t, !y.flat);
         });
-        first.clear();
+        wanted.clear();
       }
       const std::size_t facet_splits = conform_facets(extra);
       if (trace) {
@@ -1889,6 +1903,8 @@ class state3 : public state<3> {
       }
       if (facet_splits == 0) break;
     }
+    out_.faces.clear();
+    out_.face_source.clear();
     for (std::uint32_t f = 0; f < facets_.size(); ++f)
       for (const auto& t : facets_[f].triangles) {
         out_.faces.push_back(t);
@@ -1896,6 +1912,7 @@ class state3 : public state<3> {
       }
     out_.protect = ball_;
     out_.meshed_sides = meshed_;
+    if (keep) return out_;
     return std::move(out_);
   }
 
@@ -1906,6 +1923,7 @@ class state3 : public state<3> {
   std::vector<std::array<bool, 2>> meshed_;  // per facet: is its positive / negative side in a segment
   front::facet_lines lines_;
   std::size_t checked_upto_ = 0;  // points that existed at the last check of every facet
+  std::vector<std::size_t> seen_;  // per facet: vertex count when last triangulated (rounds())
 };
 
 }  // namespace
@@ -1969,6 +1987,47 @@ boundary<3> resume(const plc<3>& p, const boundary<3>& prev, const std::vector<p
   s.restore(prev, added);
   return s.resume_run(prev, split);
 }
+
+template <>
+struct session<2>::impl {
+  const plc<2>& p;
+  options o;
+};
+template <>
+struct session<3>::impl {
+  const plc<3>& p;
+  options o;
+  std::unique_ptr<state3> s{};
+  std::size_t points = 0, faces = 0;  // of the boundary the last next() returned
+};
+template <std::size_t D>
+session<D>::session(const plc<D>& p, const options& o) : impl_(new impl{p, o}) {}
+template <std::size_t D>
+session<D>::~session() = default;
+
+template <>
+boundary<2> session<2>::next(const boundary<2>& previous, const std::vector<point2>& added, const std::vector<std::size_t>& split) {
+  return resume(impl_->p, previous, added, split, impl_->o);
+}
+template <>
+boundary<3> session<3>::next(const boundary<3>& previous, const std::vector<point3>& added, const std::vector<std::size_t>& split) {
+  auto& m = *impl_;
+  const bool same = m.s && previous.points.size() == m.points && previous.faces.size() == m.faces;
+  std::unique_ptr<state3> s = same ? std::move(m.s) : nullptr;  // a throw below leaves none
+  boundary<3> b;
+  if (s) {
+    b = s->continue_run(previous, added, split);
+  } else {
+    s = std::make_unique<state3>(m.p, original_volume(previous), m.o);
+    s->restore(previous, added);
+    b = s->resume_run(previous, split, true);
+  }
+  m.points = b.points.size(), m.faces = b.faces.size();
+  m.s = std::move(s);
+  return b;
+}
+template class session<2>;
+template class session<3>;
 
 namespace {
 template <std::size_t D>

@@ -50,7 +50,47 @@ struct candidate {
   double r;
   std::uint32_t first, count;  // its encroached faces, in the chunk's face list
   bool shape;                  // above the shape bound (else only too large for the size field)
+  // the centroid of its cell, and whether the segment from there to c may meet the boundary (or
+  // the centroid is not strictly inside the cell): only then can c lie outside the cell's segment
+  point<D> from;
+  bool may_leave = false;
 };
+
+/// Whether the closed segment xy and the closed boundary face F share a point, or might: coplanar
+/// (2D: collinear) cases count as meeting. Exact.
+inline bool may_meet(const std::vector<point2>& p, const std::array<vertex_id, 2>& F, const point2& x, const point2& y) {
+  const int a = geometry::orient2d(p[F[0]], p[F[1]], x), b = geometry::orient2d(p[F[0]], p[F[1]], y);
+  if (a == b && a != 0) return false;
+  const int c = geometry::orient2d(x, y, p[F[0]]), d = geometry::orient2d(x, y, p[F[1]]);
+  return !(c == d && c != 0);
+}
+inline bool may_meet(const std::vector<point3>& p, const std::array<vertex_id, 3>& F, const point3& x, const point3& y) {
+  const point3 &a = p[F[0]], &b = p[F[1]], &c = p[F[2]];
+  const int s = geometry::orient3d(a, b, c, x), t = geometry::orient3d(a, b, c, y);
+  if (s == t && s != 0) return false;
+  if (s == 0 && t == 0) return true;
+  const int e0 = geometry::orient3d(x, y, a, b), e1 = geometry::orient3d(x, y, b, c), e2 = geometry::orient3d(x, y, c, a);
+  const bool pos = e0 > 0 || e1 > 0 || e2 > 0, neg = e0 < 0 || e1 < 0 || e2 < 0;
+  return !(pos && neg);
+}
+
+/// Whether g lies strictly inside cell c (exact).
+template <std::size_t D>
+bool strictly_inside(const std::vector<point<D>>& p, const std::array<vertex_id, D + 1>& c, const point<D>& g) {
+  auto orient = [&](std::size_t skip) {
+    std::array<point<D>, D + 1> q;
+    for (std::size_t i = 0; i <= D; ++i) q[i] = i == skip ? g : p[c[i]];
+    if constexpr (D == 2)
+      return geometry::orient2d(q[0], q[1], q[2]);
+    else
+      return geometry::orient3d(q[0], q[1], q[2], q[3]);
+  };
+  const int o = orient(D + 1);
+  if (o == 0) return false;
+  for (std::size_t i = 0; i <= D; ++i)
+    if (orient(i) != o) return false;
+  return true;
+}
 
 /// Circumcentre and circumradius of a cell, within a relative 1e-8 of the longest edge: the
 /// double construction when the cell is far from flat, else the exact one rounded outwards (a
@@ -343,25 +383,33 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
           r = distance(at, p[c[si]]);
         }
       }
-      found[k].push_back({at, r, 0, 0, bad_shape});
+      point<D> g{};
+      for (auto v : c) g = g + p[v];
+      g = (1.0 / (D + 1)) * g;
+      found[k].push_back({at, r, 0, 0, bad_shape, g, l && !strictly_inside<D>(p, c, g)});
     }
   }, [&](std::size_t k) { return static_cast<double>(chunks[k].cells.size()); });
   // the boundary faces whose closed ball holds a candidate (exact; a tie counts): the candidates
   // in a tree, asked by every face's ball box (a pass over the faces; a tree over the faces,
-  // built every round, cost more than the round's few queries)
+  // built every round, cost more than the round's few queries). The same pass finds the
+  // candidates whose segment from their cell's centroid may meet a face (below)
   {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> who;  // (chunk, index)
     std::vector<sizing::aabb<D>> spot;
     for (std::uint32_t k = 0; k < found.size(); ++k)
       for (std::uint32_t i = 0; i < found[k].size(); ++i) {
         who.push_back({k, i});
-        spot.push_back({found[k][i].c, found[k][i].c});
+        auto box = sizing::aabb<D>::empty();
+        box.add(found[k][i].c);
+        if (l) box.add(found[k][i].from);
+        spot.push_back(box);
       }
     if (!who.empty()) {
       const sizing::box_tree<D> candidates(std::move(spot), std::vector<double>(who.size(), 0.0));
       std::vector<std::size_t> pieces((b.faces.size() + piece - 1) / piece);
       std::iota(pieces.begin(), pieces.end(), std::size_t{0});
       std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> hits(pieces.size());  // (candidate, face)
+      std::vector<std::vector<std::uint32_t>> leave(pieces.size());  // candidates whose segment may meet a face
       for_each(execution::par(threads), pieces, [&](std::size_t q) {
         for (std::size_t f = q * piece; f < std::min(b.faces.size(), (q + 1) * piece); ++f) {
           const auto& F = b.faces[f];
@@ -371,17 +419,23 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
               if (x.hi[a] < box.lo[a] || x.lo[a] > box.hi[a]) return false;
             return true;
           }, [&](std::uint32_t g) {
-            const point<D>& at = found[who[g].first][who[g].second].c;
-            int s;
-            if constexpr (D == 2)
-              s = geometry::in_diametral(bp[F[0]], bp[F[1]], at);
-            else
-              s = geometry::in_equatorial(bp[F[0]], bp[F[1]], bp[F[2]], at);
-            if (s >= 0) hits[q].push_back({g, static_cast<std::uint32_t>(f)});
+            const auto& x = found[who[g].first][who[g].second];
+            const point<D>& at = x.c;
+            if (box.contains(at)) {
+              int s;
+              if constexpr (D == 2)
+                s = geometry::in_diametral(bp[F[0]], bp[F[1]], at);
+              else
+                s = geometry::in_equatorial(bp[F[0]], bp[F[1]], bp[F[2]], at);
+              if (s >= 0) hits[q].push_back({g, static_cast<std::uint32_t>(f)});
+            }
+            if (l && !x.may_leave && may_meet(bp, F, x.from, at)) leave[q].push_back(g);
             return true;
           });
         }
       });
+      for (const auto& v : leave)
+        for (auto g : v) found[who[g].first][who[g].second].may_leave = true;
       std::vector<std::pair<std::uint32_t, std::uint32_t>> all_hits;
       for (auto& h : hits) all_hits.insert(all_hits.end(), h.begin(), h.end());
       std::sort(all_hits.begin(), all_hits.end());
@@ -423,6 +477,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   });
   std::set<std::size_t> split;
   accepted_points<D> taken(p.empty() ? point<D>{} : p[0], levels);
+  std::vector<char> may_leave;  // per accepted point
   for (const auto& x : all) {
     const auto& c = at(x);
     if (c.count > 0) {
@@ -431,16 +486,22 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
     }
     if (taken.any_within(c.c, c.r)) continue;
     taken.add(c.c);
+    may_leave.push_back(c.may_leave);
   }
   out.add = std::move(taken.points());
   // a circumcentre outside every segment that encroaches no subfacet (it may lie in a subsegment's
   // ball only, or outside by rounding) is not inserted: the conformer would project a point from
-  // the outside, which it never sees otherwise. Its element stays for a later round
+  // the outside, which it never sees otherwise. Its element stays for a later round. Only the
+  // points whose segment from their cell's centroid may meet the boundary can be outside: those
+  // are located (ray casting), the others lie in their cell's segment
   if (l && !out.add.empty()) {
-    const auto where = conformer::locate(b, *l, out.add);
-    std::vector<point<D>> inside;
+    std::vector<point<D>> ask;
     for (std::size_t k = 0; k < out.add.size(); ++k)
-      if (where[k] != conformer::exterior) inside.push_back(out.add[k]);
+      if (may_leave[k]) ask.push_back(out.add[k]);
+    const auto where = conformer::locate(b, *l, ask);
+    std::vector<point<D>> inside;
+    for (std::size_t k = 0, j = 0; k < out.add.size(); ++k)
+      if (!may_leave[k] || where[j++] != conformer::exterior) inside.push_back(out.add[k]);
     out.outside = out.add.size() - inside.size();
     out.add = std::move(inside);
   }
@@ -872,11 +933,14 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
   };
   auto todo = all_todo(cells);
   auto no_balls = [](const cells_by_region<D>& c) {
-    balls_by_region<D> b(c.size());
-    for (std::size_t r = 0; r < c.size(); ++r) b[r].resize(c[r].size());
-    return b;
+    balls_by_region<D> kept(c.size());
+    for (std::size_t r = 0; r < c.size(); ++r) kept[r].resize(c[r].size());
+    return kept;
   };
   auto balls = no_balls(cells);
+  // the conformer stays alive between rounds: each round's boundary work follows the points it
+  // adds, not the size of the boundary (conformer::session)
+  conformer::session<D> boundary_rounds(p, co);
   for (;;) {
     std::function<double(const point<D>&)> size;
     if constexpr (D == 2)
@@ -910,7 +974,7 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     // a round that fails (an error from the conformer, the labelling or the mesher) leaves the
     // last good mesh, its boundary and labels as they were; the failure is reported, not hidden
     try {
-      auto b2 = conformer::resume(p, b, pl.add, pl.split, co);
+      auto b2 = boundary_rounds.next(b, pl.add, pl.split);
       st.conform_seconds += lap();
       auto l2 = conformer::label_refined(b2, p, b, l, o.threads);
       st.label_seconds += lap();

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,30 @@ boundary<2> resume(const plc<2>& p, const boundary<2>& previous, const std::vect
                    const std::vector<std::size_t>& split, const options& o = {});
 boundary<3> resume(const plc<3>& p, const boundary<3>& previous, const std::vector<point3>& added,
                    const std::vector<std::size_t>& split, const options& o = {});
+
+/// A conformer kept alive between resumes: Delaunay refinement's rounds (modules/refinement).
+/// next(previous, added, split) returns a boundary as resume(p, previous, added, split, o) does.
+/// Its first call is a resume(); while each next call is handed what the last one returned, the
+/// conformer goes on from the state it ended in (3D: grids of the points, edge chains, facet
+/// triangulations, what its last check found clean) instead of rebuilding it from `previous`:
+/// a round's cost follows the points it adds, not the size of the boundary. The result is a
+/// conforming refinement of `previous` like resume()'s; the two can differ in which encroacher
+/// a search meets first (the grids differ), so not byte for byte. Handed another boundary, it
+/// resumes from that one. After next() throws, the next call resumes afresh. 2D: resume() each
+/// time (its rebuild is cheap). Keeps a reference to p: p must outlive the session.
+template <std::size_t D>
+class session {
+ public:
+  session(const plc<D>& p, const options& o);
+  ~session();
+  session(const session&) = delete;
+  session& operator=(const session&) = delete;
+  boundary<D> next(const boundary<D>& previous, const std::vector<point<D>>& added, const std::vector<std::size_t>& split);
+
+ private:
+  struct impl;
+  std::unique_ptr<impl> impl_;
+};
 
 /// Post-check: every encroached element of `b`, as (face index, encroaching vertex). Empty means
 /// the boundary is conforming. Decided with exact predicates and the tie rule above. In 3D it
