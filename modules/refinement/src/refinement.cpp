@@ -703,50 +703,84 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     for (std::size_t a = 0; a < cells[r].size(); a += piece) chunks.push_back({r, a, std::min(piece, cells[r].size() - a)});
   std::vector<std::vector<char>> dead(cells.size());
   for (std::size_t r = 0; r < cells.size(); ++r) dead[r].assign(cells[r].size(), 0);
+  // a cell's circumball, computed the first time it is needed and kept (balls) across rounds
+  auto ball_of = [&](std::size_t r, std::size_t i, cell_ball<D>& own) -> cell_ball<D>& {
+    cell_ball<D>& ball = balls ? (*balls)[r][i] : own;
+    if (ball.pad == cell_ball<D>::unknown) {
+      double rad;
+      if (!circumball(p, cells[r][i], ball.at, rad)) {
+        ball.pad = cell_ball<D>::flat;
+      } else {
+        double m = 0;
+        for (double x : ball.at) m = std::max(m, std::abs(x));
+        ball.pad = rad * (1 + 1e-8) + 64 * std::numeric_limits<double>::epsilon() * (m + rad) + 1e-300;
+      }
+    }
+    return ball;
+  };
+  // whether a new point lies in the box [lo, hi] (closed)
+  auto new_point_in = [&](const point<D>& lo, const point<D>& hi) {
+    return bins.any(lo, hi, [&](vertex_id y) {
+      for (std::size_t k = 0; k < D; ++k)
+        if (p[y][k] < lo[k] || p[y][k] > hi[k]) return false;
+      return true;
+    });
+  };
   for_each(execution::par(threads), chunks, [&](const chunk& ch) {
-    for (std::size_t i = ch.first; i < ch.first + ch.count; ++i) {
-      cell_t<D> c = cells[ch.region][i];
-      char& out = dead[ch.region][i];
-      std::size_t marked = 0;
-      for (auto v : c) marked += on_gone[v];
-      if (marked >= D)
-        for (const auto& g : faces_into<D>(c))
-          if (gone.count(key_of<D>(g))) out = 1;
-      if (out || p.size() == n0) continue;
-      cell_ball<D> own;
-      cell_ball<D>& ball = balls ? (*balls)[ch.region][i] : own;
-      if (ball.pad == cell_ball<D>::unknown) {
-        double r;
-        if (!circumball(p, c, ball.at, r)) {
-          ball.pad = cell_ball<D>::flat;
-        } else {
-          double m = 0;
-          for (double x : ball.at) m = std::max(m, std::abs(x));
-          ball.pad = r * (1 + 1e-8) + 64 * std::numeric_limits<double>::epsilon() * (m + r) + 1e-300;
-        }
-      }
-      if (ball.pad == cell_ball<D>::flat) {
-        out = 1;  // flat in double precision: re-meshed, which is always safe
-        continue;
-      }
-      const point<D>& at = ball.at;
-      const double pad = ball.pad;
+    // runs of 256 cells (spatial_order makes them lie together): a run with no cell on D marked
+    // vertices, no flat cell and no new point in the box of its balls has no dead cell
+    constexpr std::size_t run = 256;
+    for (std::size_t a = ch.first; a < ch.first + ch.count; a += run) {
+      const std::size_t e = std::min(a + run, ch.first + ch.count);
+      bool look = false;
       point<D> lo, hi;
-      for (std::size_t k = 0; k < D; ++k) lo[k] = at[k] - pad, hi[k] = at[k] + pad;
-      bool oriented = false;
-      out = bins.any(lo, hi, [&](vertex_id y) {
-        if (squared_distance(p[y], at) > pad * pad) return false;
-        if (!oriented) {
-          int o;
-          if constexpr (D == 2)
-            o = geometry::orient2d(p[c[0]], p[c[1]], p[c[2]]);
-          else
-            o = geometry::orient3d(p[c[0]], p[c[1]], p[c[2]], p[c[3]]);
-          if (o < 0) std::swap(c[0], c[1]);
-          oriented = true;
+      lo.fill(std::numeric_limits<double>::infinity());
+      hi.fill(-std::numeric_limits<double>::infinity());
+      for (std::size_t i = a; i < e && !look; ++i) {
+        std::size_t marked = 0;
+        for (auto v : cells[ch.region][i]) marked += on_gone[v];
+        if (marked >= D) look = true;
+        if (p.size() == n0) continue;
+        cell_ball<D> own;
+        const auto& ball = ball_of(ch.region, i, own);
+        if (ball.pad == cell_ball<D>::flat) look = true;
+        for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], ball.at[k] - ball.pad), hi[k] = std::max(hi[k], ball.at[k] + ball.pad);
+      }
+      if (!look && (p.size() == n0 || !new_point_in(lo, hi))) continue;
+      for (std::size_t i = a; i < e; ++i) {
+        cell_t<D> c = cells[ch.region][i];
+        char& out = dead[ch.region][i];
+        std::size_t marked = 0;
+        for (auto v : c) marked += on_gone[v];
+        if (marked >= D)
+          for (const auto& g : faces_into<D>(c))
+            if (gone.count(key_of<D>(g))) out = 1;
+        if (out || p.size() == n0) continue;
+        cell_ball<D> own;
+        const auto& ball = ball_of(ch.region, i, own);
+        if (ball.pad == cell_ball<D>::flat) {
+          out = 1;  // flat in double precision: re-meshed, which is always safe
+          continue;
         }
-        return in_ball(p, c, y);
-      });
+        const point<D>& at = ball.at;
+        const double pad = ball.pad;
+        point<D> blo, bhi;
+        for (std::size_t k = 0; k < D; ++k) blo[k] = at[k] - pad, bhi[k] = at[k] + pad;
+        bool oriented = false;
+        out = bins.any(blo, bhi, [&](vertex_id y) {
+          if (squared_distance(p[y], at) > pad * pad) return false;
+          if (!oriented) {
+            int o;
+            if constexpr (D == 2)
+              o = geometry::orient2d(p[c[0]], p[c[1]], p[c[2]]);
+            else
+              o = geometry::orient3d(p[c[0]], p[c[1]], p[c[2]], p[c[3]]);
+            if (o < 0) std::swap(c[0], c[1]);
+            oriented = true;
+          }
+          return in_ball(p, c, y);
+        });
+      }
     }
   }, [&](const chunk& ch) { return static_cast<double>(ch.count); });
   // 2. each region's cavity boundary: the faces of its dead cells met once, less the gone faces,
@@ -886,39 +920,78 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       for (auto v : c)
         if (v >= n0) used[v - n0] = 1;
   if (std::find(used.begin(), used.end(), 0) != used.end()) return false;
-  // 4. each region: the cells that stay, in their order, then the new ones, task by task
-  std::size_t count = 0;
-  for (std::size_t r = 0; r < cells.size(); ++r) {
-    std::vector<cell_t<D>> next;
+  // 4. each region: the cells that stay, in their order, then the new ones, task by task (in
+  // place, the regions in parallel)
+  std::vector<std::size_t> added(cells.size(), 0), regions(cells.size());
+  std::iota(regions.begin(), regions.end(), std::size_t{0});
+  for_each(execution::par(threads), regions, [&](std::size_t r) {
     std::size_t add = 0;
     for (std::size_t t = region_first[r]; t < region_first[r + 1]; ++t) add += made[t].size();
-    next.reserve(cells[r].size() + add);
-    for (std::size_t i = 0; i < cells[r].size(); ++i)
-      if (!dead[r][i]) next.push_back(cells[r][i]);
-    if (balls) {  // the survivors' balls, then unknown for every new cell
-      auto& bl = (*balls)[r];
-      std::size_t w = 0;
-      for (std::size_t i = 0; i < cells[r].size(); ++i)
-        if (!dead[r][i]) bl[w++] = bl[i];
-      bl.resize(w);
-      bl.resize(w + add);
+    added[r] = add;
+    auto& cs = cells[r];
+    const auto& dr = dead[r];
+    std::size_t w = 0;
+    for (std::size_t i = 0; i < cs.size(); ++i)
+      if (!dr[i]) {
+        cs[w] = cs[i];
+        if (balls) (*balls)[r][w] = (*balls)[r][i];  // the survivors' balls, then unknown for every new cell
+        if (flags) (*flags)[r][w] = (*flags)[r][i];  // the survivors' flags, then 1 (not looked at yet)
+        ++w;
+      }
+    cs.resize(w);
+    cs.reserve(w + add);
+    for (std::size_t t = region_first[r]; t < region_first[r + 1]; ++t) cs.insert(cs.end(), made[t].begin(), made[t].end());
+    if (balls) {
+      (*balls)[r].resize(w);
+      (*balls)[r].resize(w + add);
     }
-    if (flags) {  // the survivors' flags, then 1 (not looked at yet) for every new cell
-      auto& fl = (*flags)[r];
-      std::size_t w = 0;
-      for (std::size_t i = 0; i < cells[r].size(); ++i)
-        if (!dead[r][i]) fl[w++] = fl[i];
-      fl.resize(w);
-      fl.resize(w + add, 1);
+    if (flags) {
+      (*flags)[r].resize(w);
+      (*flags)[r].resize(w + add, 1);
     }
-    for (std::size_t t = region_first[r]; t < region_first[r + 1]; ++t) next.insert(next.end(), made[t].begin(), made[t].end());
-    count += add;
-    cells[r] = std::move(next);
-  }
+  }, [&](std::size_t r) { return static_cast<double>(cells[r].size()); });
+  const std::size_t count = std::accumulate(added.begin(), added.end(), std::size_t{0});
   if (removed_count) *removed_count = removed;
   if (made_count) *made_count = count;
   return true;
 }
+
+namespace {
+/// Each region's cells in the Morton order of their centroids (a 2^21 lattice over the points'
+/// box; ties in their order before): consecutive cells lie together, so that a run of them has a
+/// small box (remesh_cavities skips the runs no new point comes near).
+template <std::size_t D>
+void spatial_order(cells_by_region<D>& cells, const std::vector<point<D>>& p, unsigned threads) {
+  if (p.empty()) return;
+  point<D> lo = p[0], hi = p[0];
+  for (const auto& q : p)
+    for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+  constexpr int bits = D == 2 ? 31 : 21;
+  std::vector<std::size_t> regions(cells.size());
+  std::iota(regions.begin(), regions.end(), std::size_t{0});
+  for_each(execution::par(threads), regions, [&](std::size_t r) {
+    auto& cs = cells[r];
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> key(cs.size());
+    for (std::size_t i = 0; i < cs.size(); ++i) {
+      point<D> g{};
+      for (auto v : cs[i]) g = g + p[v];
+      g = (1.0 / (D + 1)) * g;
+      std::uint64_t m = 0;
+      for (std::size_t k = 0; k < D; ++k) {
+        const double e = hi[k] - lo[k];
+        const double t = e > 0 ? (g[k] - lo[k]) / e : 0;
+        const auto q = static_cast<std::uint64_t>(std::clamp(t * (1u << bits), 0.0, static_cast<double>((1u << bits) - 1)));
+        for (int bit = 0; bit < bits; ++bit) m |= ((q >> bit) & 1u) << (static_cast<std::size_t>(bit) * D + k);
+      }
+      key[i] = {m, static_cast<std::uint32_t>(i)};
+    }
+    std::sort(key.begin(), key.end());
+    std::vector<cell_t<D>> sorted(cs.size());
+    for (std::size_t i = 0; i < cs.size(); ++i) sorted[i] = cs[key[i].second];
+    cs = std::move(sorted);
+  }, [&](std::size_t r) { return static_cast<double>(cells[r].size()); });
+}
+}  // namespace
 
 template <std::size_t D>
 domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labelling& l, cells_by_region<D> cells,
@@ -931,6 +1004,7 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     for (std::size_t r = 0; r < c.size(); ++r) t[r].assign(c[r].size(), 1);
     return t;
   };
+  spatial_order(cells, b.points, o.threads);
   auto todo = all_todo(cells);
   auto no_balls = [](const cells_by_region<D>& c) {
     balls_by_region<D> kept(c.size());
@@ -985,6 +1059,7 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
         st.cavity_cells += removed, st.cavity_made += made;
       } else {
         cells = mesh.wrap(b2, l2);
+        spatial_order(cells, b2.points, o.threads);
         todo = all_todo(cells);
         balls = no_balls(cells);
         ++st.full_remeshes;
