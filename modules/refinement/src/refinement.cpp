@@ -255,24 +255,27 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   if constexpr (D == 3) {
     if (acute_guard > 0) {
       auto on_edge = [&](vertex_id v) { return v < b.plc_points || b.homes[v].kind == conformer::home::edge; };
-      std::unordered_map<std::uint64_t, std::vector<vertex_id>> around;  // subsegment -> third vertices
+      // (subsegment, third vertex) of every face on two edge points, grouped by subsegment (a
+      // sorted list: a hash map of lists per round cost more than the rest of the plan)
+      std::vector<std::pair<std::uint64_t, vertex_id>> around;
       for (const auto& F : b.faces)
         for (int i = 0; i < 3; ++i) {
           const vertex_id u = F[static_cast<std::size_t>(i)], v = F[static_cast<std::size_t>((i + 1) % 3)], w = F[static_cast<std::size_t>((i + 2) % 3)];
           if (!on_edge(u) || !on_edge(v)) continue;
-          const auto key = (std::uint64_t{std::min(u, v)} << 32) | std::max(u, v);
-          around[key].push_back(w);
+          around.push_back({(std::uint64_t{std::min(u, v)} << 32) | std::max(u, v), w});
         }
-      std::vector<std::pair<std::uint64_t, const std::vector<vertex_id>*>> keys;
-      for (const auto& kv : around)
-        if (kv.second.size() >= 2) keys.push_back({kv.first, &kv.second});
-      std::sort(keys.begin(), keys.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-      for (const auto& [key, thirds] : keys) {
+      std::sort(around.begin(), around.end());
+      std::vector<vertex_id> thirds;
+      for (std::size_t at = 0; at < around.size();) {
+        const std::uint64_t key = around[at].first;
+        thirds.clear();
+        for (; at < around.size() && around[at].first == key; ++at) thirds.push_back(around[at].second);
+        if (thirds.size() < 2) continue;
         const auto u = static_cast<vertex_id>(key >> 32), v = static_cast<vertex_id>(key & 0xffffffffu);
         const point<D> d = p[v] - p[u];
         const double dd = dot(d, d);
         std::vector<point<D>> dirs;
-        for (vertex_id w : *thirds) {
+        for (vertex_id w : thirds) {
           point<D> x = p[w] - p[u];
           x = x - (dot(x, d) / dd) * d;
           const double n = std::sqrt(dot(x, x));
@@ -795,40 +798,80 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     std::vector<face_t<D>> front;
     std::vector<std::pair<point<D>, point<D>>> boxes;  // the bounding box of each piece's front
   };
-  std::vector<task> tasks;
-  std::vector<std::size_t> region_first(cells.size() + 1, 0);
-  std::size_t removed = 0;
-  for (std::size_t r = 0; r < cells.size(); ++r) {
-    region_first[r] = tasks.size();
-    std::unordered_map<face_t<D>, face_t<D>, face_hash<D>> open;
+  // per region, in parallel: its tasks, or a failure (the cavities do not close)
+  struct region_tasks {
+    std::vector<task> tasks;
+    std::size_t removed = 0;
+    bool ok = true;
+  };
+  std::vector<region_tasks> by_region(cells.size());
+  std::vector<std::size_t> regions(cells.size());
+  std::iota(regions.begin(), regions.end(), std::size_t{0});
+  // the parity of the permutation that sorts a face: faces with one key and one parity face the
+  // same way
+  auto parity = [](const face_t<D>& f) {
+    int n = 0;
+    for (std::size_t i = 0; i < D; ++i)
+      for (std::size_t j = i + 1; j < D; ++j) n += f[i] > f[j];
+    return n % 2;
+  };
+  for_each(execution::par(threads), regions, [&](std::size_t r) {
+    auto& W = by_region[r];
+    // the faces of the dead cells, by key: a face met twice (by two dead cells, facing opposite
+    // ways) is inside the cavity, once is on its boundary
+    std::vector<std::pair<face_t<D>, face_t<D>>> met;  // (key, face facing into the dead cell)
     for (std::size_t i = 0; i < cells[r].size(); ++i) {
       if (!dead[r][i]) continue;
-      ++removed;
-      for (const auto& g : faces_into<D>(cells[r][i])) {
-        auto [it, fresh] = open.try_emplace(key_of<D>(g), g);
-        if (fresh) continue;
-        face_t<D> rev = g;
-        std::swap(rev[0], rev[1]);
-        if (key_of<D>(rev) != key_of<D>(it->second) || it->second == g) return false;  // two dead cells on one side of a face
-        open.erase(it);
-      }
+      ++W.removed;
+      for (const auto& g : faces_into<D>(cells[r][i])) met.push_back({key_of<D>(g), g});
     }
+    std::sort(met.begin(), met.end());
+    std::vector<std::pair<face_t<D>, face_t<D>>> open;  // sorted by key
+    for (std::size_t i = 0; i < met.size();) {
+      std::size_t j = i + 1;
+      while (j < met.size() && met[j].first == met[i].first) ++j;
+      if (j - i == 1) {
+        open.push_back(met[i]);
+      } else if (j - i > 2 || parity(met[i].second) == parity(met[i + 1].second)) {
+        W.ok = false;  // two dead cells on one side of a face
+        return;
+      }
+      i = j;
+    }
+    std::vector<char> gone_here(open.size(), 0);
     for (std::size_t f : gone_faces)
-      for (int s = 0; s < 2; ++s)
-        if (l0.side[f][static_cast<std::size_t>(s)] == static_cast<int>(r))
-          if (open.erase(key_of<D>(b0.faces[f])) != 1) return false;
-    for (std::size_t f : came_faces)
-      for (int s = 0; s < 2; ++s)
-        if (l1.side[f][static_cast<std::size_t>(s)] == static_cast<int>(r)) {
-          auto F = b1.faces[f];
-          if (s == 1) std::swap(F[0], F[1]);
-          if (!open.try_emplace(key_of<D>(F), F).second) return false;
+      for (int side = 0; side < 2; ++side)
+        if (l0.side[f][static_cast<std::size_t>(side)] == static_cast<int>(r)) {
+          const auto key = key_of<D>(b0.faces[f]);
+          const auto it = std::lower_bound(open.begin(), open.end(), key, [](const auto& x, const face_t<D>& k) { return x.first < k; });
+          if (it == open.end() || it->first != key || gone_here[static_cast<std::size_t>(it - open.begin())]) {
+            W.ok = false;
+            return;
+          }
+          gone_here[static_cast<std::size_t>(it - open.begin())] = 1;
         }
-    if (open.empty()) continue;
+    std::vector<std::pair<face_t<D>, face_t<D>>> keyed;
+    for (std::size_t i = 0; i < open.size(); ++i)
+      if (!gone_here[i]) keyed.push_back(open[i]);
+    const std::size_t kept = keyed.size();
+    for (std::size_t f : came_faces)
+      for (int side = 0; side < 2; ++side)
+        if (l1.side[f][static_cast<std::size_t>(side)] == static_cast<int>(r)) {
+          auto F = b1.faces[f];
+          if (side == 1) std::swap(F[0], F[1]);
+          keyed.push_back({key_of<D>(F), F});
+        }
+    std::sort(keyed.begin() + static_cast<long>(kept), keyed.end());
+    std::inplace_merge(keyed.begin(), keyed.begin() + static_cast<long>(kept), keyed.end());
+    for (std::size_t i = 1; i < keyed.size(); ++i)
+      if (keyed[i].first == keyed[i - 1].first) {
+        W.ok = false;  // a new boundary face where the cavity's boundary has one already
+        return;
+      }
+    if (keyed.empty()) return;
     std::vector<face_t<D>> front;
-    front.reserve(open.size());
-    for (const auto& [k, F] : open) front.push_back(F);
-    std::sort(front.begin(), front.end(), [](const face_t<D>& x, const face_t<D>& y) { return key_of<D>(x) < key_of<D>(y); });
+    front.reserve(keyed.size());
+    for (const auto& [k, F] : keyed) front.push_back(F);
     // connected pieces (faces sharing a vertex), in order of their first face, batched into tasks
     // of about 4096 faces: a task is a union of closed fronts, so the front mesher fills each
     std::unordered_map<vertex_id, std::uint32_t> local;
@@ -865,10 +908,19 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     }
     std::sort(order.begin(), order.end());
     for (auto [m, i] : order) {
-      if (tasks.size() == region_first[r] || tasks.back().front.size() >= 4096) tasks.push_back({r, {}, {}});
-      tasks.back().front.insert(tasks.back().front.end(), pieces[i].begin(), pieces[i].end());
-      tasks.back().boxes.push_back(box[i]);
+      if (W.tasks.empty() || W.tasks.back().front.size() >= 4096) W.tasks.push_back({r, {}, {}});
+      W.tasks.back().front.insert(W.tasks.back().front.end(), pieces[i].begin(), pieces[i].end());
+      W.tasks.back().boxes.push_back(box[i]);
     }
+  }, [&](std::size_t r) { return static_cast<double>(cells[r].size()); });
+  std::vector<task> tasks;
+  std::vector<std::size_t> region_first(cells.size() + 1, 0);
+  std::size_t removed = 0;
+  for (std::size_t r = 0; r < cells.size(); ++r) {
+    if (!by_region[r].ok) return false;
+    region_first[r] = tasks.size();
+    removed += by_region[r].removed;
+    for (auto& t : by_region[r].tasks) tasks.push_back(std::move(t));
   }
   region_first[cells.size()] = tasks.size();
   // 3. fill every task's cavities with the front mesher, in parallel; a task whose cells do not
@@ -922,8 +974,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   if (std::find(used.begin(), used.end(), 0) != used.end()) return false;
   // 4. each region: the cells that stay, in their order, then the new ones, task by task (in
   // place, the regions in parallel)
-  std::vector<std::size_t> added(cells.size(), 0), regions(cells.size());
-  std::iota(regions.begin(), regions.end(), std::size_t{0});
+  std::vector<std::size_t> added(cells.size(), 0);
   for_each(execution::par(threads), regions, [&](std::size_t r) {
     std::size_t add = 0;
     for (std::size_t t = region_first[r]; t < region_first[r + 1]; ++t) add += made[t].size();
