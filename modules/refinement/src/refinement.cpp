@@ -12,7 +12,6 @@
 #include <stdexcept>
 #include <tuple>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "gsse/container/union_find.hpp"
 #include "gsse/front/front_mesher.hpp"
@@ -523,17 +522,6 @@ face_t<D> key_of(face_t<D> f) {
   return f;
 }
 
-template <std::size_t D>
-struct face_hash {
-  std::size_t operator()(const face_t<D>& f) const {
-    std::uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (auto v : f) h = (h ^ v) * 0xff51afd7ed558ccdull, h ^= h >> 29;
-    return static_cast<std::size_t>(h);
-  }
-};
-template <std::size_t D>
-using face_set = std::unordered_set<face_t<D>, face_hash<D>>;
-
 /// The points [first, end) of `p` in a uniform grid (compressed rows), for "which of them lie near
 /// this box". Doubles select candidates; exact predicates decide.
 template <std::size_t D>
@@ -656,25 +644,6 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   // the boundary faces that went (split) and came. The conformer lists faces source by source
   // (PLC edge or facet), in the same order each round, and a source it did not touch keeps its
   // list: where the runs of sources match, only runs that differ are compared as sets
-  face_set<D> gone;
-  std::vector<char> on_gone(p.size(), 0);
-  std::vector<std::size_t> gone_faces, came_faces;
-  auto compare = [&](std::size_t a0, std::size_t e0, std::size_t a1, std::size_t e1) {
-    if (e0 - a0 == e1 - a1 && std::equal(b0.faces.begin() + static_cast<long>(a0), b0.faces.begin() + static_cast<long>(e0),
-                                         b1.faces.begin() + static_cast<long>(a1)))
-      return;
-    face_set<D> old_keys, new_keys;
-    for (std::size_t f = a0; f < e0; ++f) old_keys.insert(key_of<D>(b0.faces[f]));
-    for (std::size_t f = a1; f < e1; ++f) new_keys.insert(key_of<D>(b1.faces[f]));
-    for (std::size_t f = a0; f < e0; ++f)
-      if (!new_keys.count(key_of<D>(b0.faces[f]))) {
-        gone.insert(key_of<D>(b0.faces[f]));
-        gone_faces.push_back(f);
-        for (auto v : b0.faces[f]) on_gone[v] = 1;
-      }
-    for (std::size_t f = a1; f < e1; ++f)
-      if (!old_keys.count(key_of<D>(b1.faces[f]))) came_faces.push_back(f);
-  };
   auto runs = [](const conformer::boundary<D>& b) {
     std::vector<std::size_t> r;  // starts of the runs of equal sources, then the end
     for (std::size_t f = 0; f < b.face_source.size(); ++f)
@@ -687,11 +656,49 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   std::set<std::uint32_t> sources;
   for (std::size_t i = 0; aligned && i + 1 < r0.size(); ++i)
     aligned = b0.face_source[r0[i]] == b1.face_source[r1[i]] && sources.insert(b0.face_source[r0[i]]).second;
+  struct pair_of_runs {
+    std::size_t a0, e0, a1, e1;
+  };
+  std::vector<pair_of_runs> differ;
   if (aligned) {
-    for (std::size_t i = 0; i + 1 < r0.size(); ++i) compare(r0[i], r0[i + 1], r1[i], r1[i + 1]);
+    for (std::size_t i = 0; i + 1 < r0.size(); ++i) {
+      const std::size_t a0 = r0[i], e0 = r0[i + 1], a1 = r1[i], e1 = r1[i + 1];
+      if (!(e0 - a0 == e1 - a1 && std::equal(b0.faces.begin() + static_cast<long>(a0), b0.faces.begin() + static_cast<long>(e0),
+                                             b1.faces.begin() + static_cast<long>(a1))))
+        differ.push_back({a0, e0, a1, e1});
+    }
   } else {
-    compare(0, b0.faces.size(), 0, b1.faces.size());
+    differ.push_back({0, b0.faces.size(), 0, b1.faces.size()});
   }
+  // each pair of differing runs as sorted key lists, in parallel; results in run order
+  std::vector<std::vector<std::size_t>> gone_in(differ.size()), came_in(differ.size());
+  std::vector<std::size_t> which(differ.size());
+  std::iota(which.begin(), which.end(), std::size_t{0});
+  for_each(execution::par(threads), which, [&](std::size_t i) {
+    const auto [a0, e0, a1, e1] = differ[i];
+    std::vector<face_t<D>> old_keys, new_keys;
+    old_keys.reserve(e0 - a0), new_keys.reserve(e1 - a1);
+    for (std::size_t f = a0; f < e0; ++f) old_keys.push_back(key_of<D>(b0.faces[f]));
+    for (std::size_t f = a1; f < e1; ++f) new_keys.push_back(key_of<D>(b1.faces[f]));
+    std::sort(old_keys.begin(), old_keys.end());
+    std::sort(new_keys.begin(), new_keys.end());
+    for (std::size_t f = a0; f < e0; ++f)
+      if (!std::binary_search(new_keys.begin(), new_keys.end(), key_of<D>(b0.faces[f]))) gone_in[i].push_back(f);
+    for (std::size_t f = a1; f < e1; ++f)
+      if (!std::binary_search(old_keys.begin(), old_keys.end(), key_of<D>(b1.faces[f]))) came_in[i].push_back(f);
+  }, [&](std::size_t i) { return static_cast<double>(differ[i].e0 - differ[i].a0 + differ[i].e1 - differ[i].a1); });
+  std::vector<std::size_t> gone_faces, came_faces;
+  for (std::size_t i = 0; i < differ.size(); ++i) {
+    gone_faces.insert(gone_faces.end(), gone_in[i].begin(), gone_in[i].end());
+    came_faces.insert(came_faces.end(), came_in[i].begin(), came_in[i].end());
+  }
+  std::vector<face_t<D>> gone;  // sorted keys
+  std::vector<char> on_gone(p.size(), 0);
+  for (std::size_t f : gone_faces) {
+    gone.push_back(key_of<D>(b0.faces[f]));
+    for (auto v : b0.faces[f]) on_gone[v] = 1;
+  }
+  std::sort(gone.begin(), gone.end());
   if (p.size() == n0 && gone_faces.empty() && came_faces.empty()) return true;
   if (flags && flags->size() != cells.size()) return false;
   if (balls && balls->size() != cells.size()) return false;
@@ -757,7 +764,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         for (auto v : c) marked += on_gone[v];
         if (marked >= D)
           for (const auto& g : faces_into<D>(c))
-            if (gone.count(key_of<D>(g))) out = 1;
+            if (std::binary_search(gone.begin(), gone.end(), key_of<D>(g))) out = 1;
         if (out || p.size() == n0) continue;
         cell_ball<D> own;
         const auto& ball = ball_of(ch.region, i, own);
@@ -972,34 +979,53 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       for (auto v : c)
         if (v >= n0) used[v - n0] = 1;
   if (std::find(used.begin(), used.end(), 0) != used.end()) return false;
-  // 4. each region: the cells that stay, in their order, then the new ones, task by task (in
-  // place, the regions in parallel)
+  // 4. each region: the new cells (task by task) take the places of the dead ones, in order,
+  // and the rest are appended: a round costs what it changes, and a run of cells stays about
+  // one place (the cavities are where the dead cells were). Fewer new cells than dead ones: the
+  // survivors close up, in order. The regions in parallel.
   std::vector<std::size_t> added(cells.size(), 0);
   for_each(execution::par(threads), regions, [&](std::size_t r) {
     std::size_t add = 0;
     for (std::size_t t = region_first[r]; t < region_first[r + 1]; ++t) add += made[t].size();
     added[r] = add;
     auto& cs = cells[r];
-    const auto& dr = dead[r];
-    std::size_t w = 0;
-    for (std::size_t i = 0; i < cs.size(); ++i)
-      if (!dr[i]) {
-        cs[w] = cs[i];
-        if (balls) (*balls)[r][w] = (*balls)[r][i];  // the survivors' balls, then unknown for every new cell
-        if (flags) (*flags)[r][w] = (*flags)[r][i];  // the survivors' flags, then 1 (not looked at yet)
-        ++w;
+    auto& dr = dead[r];
+    std::size_t t = region_first[r], j = 0;  // the next new cell: made[t][j]
+    auto next_new = [&](cell_t<D>& into) {
+      while (t < region_first[r + 1] && j == made[t].size()) ++t, j = 0;
+      if (t == region_first[r + 1]) return false;
+      into = made[t][j++];
+      return true;
+    };
+    const std::size_t old_size = cs.size();
+    bool holes = false;
+    for (std::size_t i = 0; i < old_size; ++i)
+      if (dr[i]) {
+        if (!next_new(cs[i])) {
+          holes = true;
+          continue;
+        }
+        dr[i] = 0;
+        if (balls) (*balls)[r][i] = cell_ball<D>{};  // unknown
+        if (flags) (*flags)[r][i] = 1;               // not looked at yet
       }
-    cs.resize(w);
-    cs.reserve(w + add);
-    for (std::size_t t = region_first[r]; t < region_first[r + 1]; ++t) cs.insert(cs.end(), made[t].begin(), made[t].end());
-    if (balls) {
-      (*balls)[r].resize(w);
-      (*balls)[r].resize(w + add);
+    if (holes) {  // every new cell is placed: close up over the dead ones left
+      std::size_t w = 0;
+      for (std::size_t i = 0; i < old_size; ++i)
+        if (!dr[i]) {
+          cs[w] = cs[i];
+          if (balls) (*balls)[r][w] = (*balls)[r][i];
+          if (flags) (*flags)[r][w] = (*flags)[r][i];
+          ++w;
+        }
+      cs.resize(w);
+      if (balls) (*balls)[r].resize(w);
+      if (flags) (*flags)[r].resize(w);
+      return;
     }
-    if (flags) {
-      (*flags)[r].resize(w);
-      (*flags)[r].resize(w + add, 1);
-    }
+    for (cell_t<D> c; next_new(c);) cs.push_back(c);
+    if (balls) (*balls)[r].resize(cs.size());
+    if (flags) (*flags)[r].resize(cs.size(), 1);
   }, [&](std::size_t r) { return static_cast<double>(cells[r].size()); });
   const std::size_t count = std::accumulate(added.begin(), added.end(), std::size_t{0});
   if (removed_count) *removed_count = removed;
