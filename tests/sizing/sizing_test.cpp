@@ -54,6 +54,15 @@ std::size_t spanning(const domain<3>& d, int number, double a, double b) {
   return n;
 }
 
+/// The size field of two boundary triangles: points 0-2 and 3-5 of `pts`, sources 0 and 1, with
+/// the segments on their sides as given.
+sizing::size_field<3> two_triangles(const std::vector<point3>& pts, const std::vector<std::array<int, 2>>& sides,
+                                    const sizing::spec<3>& s) {
+  static const std::vector<std::array<vertex_id, 3>> faces{{0, 1, 2}, {3, 4, 5}};
+  static const std::vector<std::uint32_t> src{0, 1};
+  return sizing::build<3>({pts, 6, faces, src, sides, "two triangles"}, s);
+}
+
 }  // namespace
 
 // A 1e-3 film on a substrate 10 times as thick and 20 times as wide, and the same film between
@@ -123,8 +132,8 @@ BOOST_AUTO_TEST_CASE(sidecar_sizing_keys) {
     std::ofstream f(json);
     f << "{\"segments\": [\"layer1\", \"layer2\"],\n"
          " \"sizes\": {\"layer2\": 0.002, \"1\": 0.05},\n"
-         " \"refine\": [{\"lo\": [0, 0, 0], \"hi\": [0.01, 0.01, 0.01], \"size\": 0.001}],\n"
-         " \"interfaces\": [{\"between\": [\"layer1\", \"layer2\"], \"size\": 0.0005}],\n"
+         " \"refine\": [{\"lo\": [0, 0, 0], \"hi\": [0.01, 0.01, 0.01], \"size\": 0.001, \"grade\": 1.1}],\n"
+         " \"interfaces\": [{\"between\": [\"layer1\", \"layer2\"], \"size\": 0.0005, \"grade\": 1.5}],\n"
          " \"grade\": 1.2}\n";
   }
   const auto t = io::read_sidecar(json);
@@ -140,6 +149,8 @@ BOOST_AUTO_TEST_CASE(sidecar_sizing_keys) {
   BOOST_TEST(s.interfaces.size() == 1u);
   BOOST_TEST((s.interfaces[0].a == 1 && s.interfaces[0].b == 2));
   BOOST_TEST(s.boxes[0].size == 0.001);
+  BOOST_TEST(s.boxes[0].grade == 1.1);
+  BOOST_TEST(s.interfaces[0].grade == 1.5);
   BOOST_TEST(s.grade == 1.2);
   // an unknown segment is an error naming the file and line
   {
@@ -163,6 +174,17 @@ BOOST_AUTO_TEST_CASE(sidecar_sizing_keys) {
     f << "{\"sizes\": {\"layer1\": -1}}\n";
   }
   BOOST_CHECK_THROW(io::read_sidecar(json), io::io_error);
+  {  // an entry's own grade must be above 1, named with its line
+    std::ofstream f(json);
+    f << "{\"interfaces\": [\n{\"between\": [\"layer1\", \"layer2\"], \"size\": 0.1, \"grade\": 1}]}\n";
+  }
+  try {
+    io::read_sidecar(json);
+    BOOST_FAIL("no error for an interface grade of 1");
+  } catch (const io::io_error& e) {
+    BOOST_TEST(std::string(e.what()).find(json + ":2:") != std::string::npos, e.what());
+    BOOST_TEST(std::string(e.what()).find("grade") != std::string::npos, e.what());
+  }
   std::filesystem::remove_all(dir);
 }
 
@@ -370,15 +392,12 @@ BOOST_AUTO_TEST_CASE(grading_is_respected) {
 
 // The field's Lipschitz bound, exactly as stated: |h(x) - h(y)| <= (grade - 1) |x - y|.
 BOOST_AUTO_TEST_CASE(field_is_lipschitz) {
-  const std::vector<point3> pts{{0, 0, 0}, {0.05, 0, 0}, {0, 0.05, 0}, {0, 0, 0.001}, {0.05, 0, 0.001}, {0, 0.05, 0.001}};
-  const std::vector<std::array<vertex_id, 3>> faces{{0, 1, 2}, {3, 4, 5}};
-  const std::vector<std::uint32_t> src{0, 1};
-  const std::vector<std::array<int, 2>> sides{{1, 0}, {0, 1}};
   sizing::spec<3> s;
   s.grade = 1.25;
   s.boxes.push_back({{0.05, 0.05, 0.05}, {0.06, 0.06, 0.06}, 0.002});
   s.global = 0.02;
-  const auto f = sizing::build<3>({pts, 6, faces, src, sides, "two triangles"}, s);
+  const auto f = two_triangles({{0, 0, 0}, {0.05, 0, 0}, {0, 0.05, 0}, {0, 0, 0.001}, {0.05, 0, 0.001}, {0, 0.05, 0.001}},
+                               {{1, 0}, {0, 1}}, s);
   BOOST_TEST(f.sources() > 0u);
   BOOST_TEST(f.minimum() < 0.001);
   std::mt19937 g(3);
@@ -390,4 +409,34 @@ BOOST_AUTO_TEST_CASE(field_is_lipschitz) {
   BOOST_TEST(f(point3{0.055, 0.055, 0.055}) == 0.002);
   BOOST_TEST(f(point3{0.01, 0.01, 0.0005}) <= 0.45 * 0.001);
   BOOST_TEST(f(point3{0.01, 0.01, 1}) == 0.02);
+}
+
+// An interface layer or a box with a growth rate of its own: the size grows away from it at that
+// rate (h = size + (g - 1) * distance), the others at the field's; the field's Lipschitz bound is
+// the largest rate less 1, and holds.
+BOOST_AUTO_TEST_CASE(own_growth_rates) {
+  const std::vector<point3> pts{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {3, 0, 0}, {3, 1, 0}, {3, 0, 1}};
+  const std::vector<std::array<int, 2>> sides{{1, 2}, {2, 3}};  // interfaces 1|2 and 2|3
+  sizing::spec<3> s;
+  s.grade = 1.3;
+  s.feature_size = false;
+  s.global = 1;
+  s.interfaces.push_back({1, 2, 0.001, 2.0});  // grows by 1 per unit of distance
+  s.interfaces.push_back({2, 3, 0.004});        // the field's 0.3
+  s.boxes.push_back({{5, 5, 5}, {5.1, 5.1, 5.1}, 0.002, 1.1});
+  const auto f = two_triangles(pts, sides, s);
+  BOOST_TEST(f.slope() == 1.0);
+  for (double d : {0.0, 0.01, 0.05, 0.2})
+    BOOST_TEST(std::abs(f(point3{0.2, 0.2, d}) - (0.001 + d)) < 1e-12, "d " << d << ": " << f(point3{0.2, 0.2, d}));
+  BOOST_TEST(std::abs(f(point3{3.1, 0.2, 0.2}) - (0.004 + 0.3 * 0.1)) < 1e-12);
+  BOOST_TEST(std::abs(f(point3{5.05, 5.05, 5.3}) - (0.002 + 0.1 * 0.2)) < 1e-12);
+  std::mt19937 g(5);
+  std::uniform_real_distribution<double> u(-0.5, 5.5);
+  for (int i = 0; i < 2000; ++i) {
+    const point3 x{u(g), u(g), u(g)}, y{u(g), u(g), u(g)};
+    BOOST_TEST(std::abs(f(x) - f(y)) <= f.slope() * distance(x, y) * (1 + 1e-12) + 1e-15);
+  }
+  auto bad = s;
+  bad.interfaces[0].grade = 0.5;
+  BOOST_CHECK_THROW(two_triangles(pts, sides, bad), std::invalid_argument);
 }

@@ -27,12 +27,26 @@ struct json_scan {
     while (i < s.size() && (s[i] == ' ' || s[i] == '\t' || s[i] == '\n' || s[i] == '\r')) ++i;
     return i;
   }
-  // position just after `"key"` and its colon, or npos
+  // position just after the top-level object's `"key"` and its colon, or npos (a key of a nested
+  // object, e.g. an interface entry's "grade" or a segment named like a key, is not it)
   std::size_t find_key(const std::string& key) const {
-    const std::string q = "\"" + key + "\"";
-    for (std::size_t k = s.find(q); k != std::string::npos; k = s.find(q, k + 1)) {
-      std::size_t i = skip_ws(k + q.size());
-      if (i < s.size() && s[i] == ':') return skip_ws(i + 1);
+    int depth = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const char c = s[i];
+      if (c == '{' || c == '[') {
+        ++depth;
+      } else if (c == '}' || c == ']') {
+        --depth;
+      } else if (c == '"') {
+        const std::size_t start = i + 1;
+        for (++i; i < s.size() && s[i] != '"'; ++i)
+          if (s[i] == '\\') ++i;
+        if (i >= s.size()) return std::string::npos;
+        if (depth != 1) continue;
+        const std::size_t after = skip_ws(i + 1);
+        if (after < s.size() && s[after] == ':' && s.compare(start, i - start, key) == 0 && i - start == key.size())
+          return skip_ws(after + 1);
+      }
     }
     return std::string::npos;
   }
@@ -163,6 +177,14 @@ std::string quoted(const std::string& n) {
   return r + "\"";
 }
 
+/// An entry's own "grade" (above 1), or 0 when it has none.
+double own_grade(const json_scan& j, const json_scan::value& entry, const std::string& whose) {
+  const json_scan::value* g = entry.get("grade");
+  if (!g) return 0;
+  if (g->kind != json_scan::value::number || !(g->num > 1)) j.fail(g->pos, whose + " \"grade\" must be a number above 1");
+  return g->num;
+}
+
 void read_sizing(const json_scan& j, sizing_table& t) {
   using value = json_scan::value;
   if (auto i = j.find_key("sizes"); i != std::string::npos) {
@@ -195,6 +217,7 @@ void read_sizing(const json_scan& j, sizing_table& t) {
       const value* h = b.get("size");
       if (!h) j.fail(b.pos, "a refinement box needs \"size\"");
       box.size = j.positive(*h, "a refinement box's size");
+      box.grade = own_grade(j, b, "a refinement box's");
       t.boxes.push_back(std::move(box));
     }
   }
@@ -208,7 +231,8 @@ void read_sizing(const json_scan& j, sizing_table& t) {
         j.fail(e.pos, "an interface needs \"between\": [\"<segment>\", \"<segment>\"]");
       const value* h = e.get("size");
       if (!h) j.fail(e.pos, "an interface needs \"size\"");
-      t.interfaces.push_back({w->items[0].text, w->items[1].text, j.positive(*h, "an interface's size"), j.line_at(e.pos)});
+      t.interfaces.push_back({w->items[0].text, w->items[1].text, j.positive(*h, "an interface's size"), j.line_at(e.pos),
+                              own_grade(j, e, "an interface's")});
     }
   }
   if (auto i = j.find_key("background"); i != std::string::npos) {

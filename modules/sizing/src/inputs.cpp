@@ -135,7 +135,7 @@ void add_sidecar(spec<D>& s, const io::sizing_table& t, const plc<D>& p, const s
     auto [it, fresh] = s.segment_size.try_emplace(n, e.size);
     if (!fresh) it->second = std::min(it->second, e.size);
   }
-  for (const auto& L : t.interfaces) s.interfaces.push_back({number(L.a, L.line), number(L.b, L.line), L.size});
+  for (const auto& L : t.interfaces) s.interfaces.push_back({number(L.a, L.line), number(L.b, L.line), L.size, L.grade});
   for (const auto& b : t.boxes) {
     if (b.lo.size() != D)
       throw io::io_error(sidecar_path, b.line, "a refinement box of " + std::to_string(b.lo.size()) + " coordinates for a " +
@@ -143,6 +143,7 @@ void add_sidecar(spec<D>& s, const io::sizing_table& t, const plc<D>& p, const s
     typename spec<D>::box x;
     for (std::size_t k = 0; k < D; ++k) x.lo[k] = b.lo[k], x.hi[k] = b.hi[k];
     x.size = b.size;
+    x.grade = b.grade;
     s.boxes.push_back(x);
   }
   if (!t.background.empty()) {

@@ -77,9 +77,10 @@ double size_field<D>::operator()(const point<D>& x) const {
   double v = global_;
   for (const auto& b : boxes_) {
     aabb<D> box{b.lo, b.hi};
-    v = std::min(v, b.size + slope_ * std::sqrt(box.distance2(x)));
+    v = std::min(v, b.size + (b.grade > 0 ? b.grade - 1 : slope_) * std::sqrt(box.distance2(x)));
   }
   v = faces_.graded_min(x, slope_, v);
+  for (const auto& [slope, tree] : layers_) v = tree.graded_min(x, slope, v);
   if (background_) v = std::min(v, background_value(x));
   return v;
 }
@@ -134,7 +135,15 @@ template <std::size_t D>
 size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s, unsigned threads) {
   if (!(s.grade > 1)) throw std::invalid_argument("the grade must be above 1");
   size_field<D> f;
-  f.slope_ = s.grade - 1;
+  f.slope_ = f.max_slope_ = s.grade - 1;
+  for (const auto& bx : s.boxes) {
+    if (bx.grade != 0 && !(bx.grade > 1)) throw std::invalid_argument("a refinement box's grade must be above 1");
+    if (bx.grade > 0) f.max_slope_ = std::max(f.max_slope_, bx.grade - 1);
+  }
+  for (const auto& L : s.interfaces) {
+    if (L.grade != 0 && !(L.grade > 1)) throw std::invalid_argument("an interface's grade must be above 1");
+    if (L.grade > 0) f.max_slope_ = std::max(f.max_slope_, L.grade - 1);
+  }
   f.global_ = s.global > 0 ? s.global : unbounded;
   f.segment_size_ = s.segment_size;
   for (const auto& [n, h] : s.segment_size)
@@ -200,7 +209,7 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
     for (int n : {n0, n1})
       if (auto it = s.segment_size.find(n); n != 0 && it != s.segment_size.end()) v = std::min(v, it->second);
     for (const auto& L : s.interfaces)
-      if ((L.a == n0 && L.b == n1) || (L.a == n1 && L.b == n0)) v = std::min(v, L.size);
+      if (L.grade == 0 && ((L.a == n0 && L.b == n1) || (L.a == n1 && L.b == n0))) v = std::min(v, L.size);
     return v;
   };
 
@@ -275,7 +284,41 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
       f.minimum_ = std::min(f.minimum_, value);
     }
   f.faces_ = box_tree<D>(std::move(boxes), std::move(values));
-  f.uniform_ = f.faces_.empty() && !f.background_;
+  // interface layers with a growth rate of their own: their faces, cut in pieces no larger than
+  // the layer's size, in one tree per rate
+  std::map<double, std::pair<std::vector<aabb<D>>, std::vector<double>>> by_slope;
+  for (const auto& L : s.interfaces) {
+    if (L.grade == 0 || !(L.size < f.global_)) continue;
+    auto& [lboxes, lvalues] = by_slope[L.grade - 1];
+    for (std::size_t k = 0; k < nf && k < b.sides.size(); ++k) {
+      const int n0 = b.sides[k][0], n1 = b.sides[k][1];
+      if (!((L.a == n0 && L.b == n1) || (L.a == n1 && L.b == n0))) continue;
+      std::vector<simplex_pts<D>> todo{face_pts(k)}, next;
+      while (!todo.empty()) {
+        next.clear();
+        for (const auto& piece : todo) {
+          const point<D> c = centroid<D>(piece);
+          double r = 0;
+          for (const auto& q : piece) r = std::max(r, std::sqrt(squared_distance(q, c)));
+          if (r > std::max(L.size, floor)) {
+            split<D>(piece, next);
+            continue;
+          }
+          aabb<D> bx = aabb<D>::empty();
+          for (const auto& q : piece) bx.add(q);
+          lboxes.push_back(bx);
+          lvalues.push_back(std::max(L.size, floor));
+          f.minimum_ = std::min(f.minimum_, std::max(L.size, floor));
+        }
+        if (lboxes.size() + next.size() > max_sources)
+          throw std::runtime_error(b.source + ": an interface layer needs more than " + std::to_string(max_sources) + " boundary pieces");
+        std::swap(todo, next);
+      }
+    }
+  }
+  for (auto& [slope, bv] : by_slope)
+    if (!bv.first.empty()) f.layers_.push_back({slope, box_tree<D>(std::move(bv.first), std::move(bv.second))});
+  f.uniform_ = f.faces_.empty() && f.layers_.empty() && !f.background_;
   for (const auto& bx : s.boxes) {
     if (!(bx.size > 0)) throw std::invalid_argument("a refinement box's size must be positive");
     f.minimum_ = std::min(f.minimum_, bx.size);

@@ -9,6 +9,7 @@
 //   "sizes": {"oxide": 0.002, "3": 0.1}          maximum size per segment (name or number)
 //   "refine": [{"lo": [x, y, z], "hi": [x, y, z], "size": h}]   size inside a box
 //   "interfaces": [{"between": ["oxide", "silicon"], "size": h}]  size on an interface
+//     (a box or interface may add "grade": g, its own growth away from it; else "grade" below)
 //   "background": "bg.node"                       a background mesh BASE.node/.ele/.mtr or a .vtu, relative
 //                                                 to the sidecar's folder
 //   "grade": 1.3                                  the grading limit (--grade overrides it)
@@ -31,12 +32,14 @@ struct sizing_table {
     std::vector<double> lo, hi;  // 2 or 3 coordinates
     double size;
     std::size_t line;
+    double grade = 0;  // its own growth rate; 0: the table's
   };
   std::vector<box> boxes;
   struct interface_layer {
     std::string a, b;
     double size;
     std::size_t line;
+    double grade = 0;  // its own growth rate; 0: the table's
   };
   std::vector<interface_layer> interfaces;
   std::string background;  // path as written in the file

@@ -49,11 +49,13 @@ struct spec {
   struct box {
     point<D> lo, hi;
     double size;
+    double grade = 0;  // its own growth rate away from the box (> 1); 0: `grade`
   };
   std::vector<box> boxes;               // sidecar "refine"
   struct interface_layer {
     int a, b;  // segment numbers
     double size;
+    double grade = 0;  // its own growth rate away from the interface (> 1); 0: `grade`
   };
   std::vector<interface_layer> interfaces;  // sidecar "interfaces"
   struct background_mesh {
@@ -87,16 +89,23 @@ class size_field {
   double global() const { return global_; }
   /// The smallest value of the field (over its sources and the global size).
   double minimum() const { return minimum_; }
-  double slope() const { return slope_; }
+  /// The field's Lipschitz constant: the largest growth rate of any term, less 1.
+  double slope() const { return max_slope_; }
   /// Sources of the graded minimum (boundary face pieces), for statistics and tests.
-  std::size_t sources() const { return faces_.size(); }
+  std::size_t sources() const {
+    std::size_t n = faces_.size();
+    for (const auto& [slope, tree] : layers_) n += tree.size();
+    return n;
+  }
 
  private:
   template <std::size_t E>
   friend struct field_builder;
-  double global_ = unbounded, slope_ = 0.3, minimum_ = unbounded;
+  double global_ = unbounded, slope_ = 0.3, max_slope_ = 0.3, minimum_ = unbounded;
   bool uniform_ = true;
   box_tree<D> faces_;                       // boundary face pieces with their values
+  // interface layers with a growth rate of their own: (slope, their face pieces), by slope
+  std::vector<std::pair<double, box_tree<D>>> layers_;
   std::vector<typename spec<D>::box> boxes_;
   std::map<int, double> segment_size_;
   std::shared_ptr<const typename spec<D>::background_mesh> background_;
