@@ -1997,8 +1997,7 @@ template <>
 struct session<3>::impl {
   const plc<3>& p;
   options o;
-  std::unique_ptr<state3> s{};
-  std::size_t points = 0, faces = 0;  // of the boundary the last next() returned
+  std::unique_ptr<state3> s{};  // as the last next() left it (its out() is what it returned)
 };
 template <std::size_t D>
 session<D>::session(const plc<D>& p, const options& o) : impl_(new impl{p, o}) {}
@@ -2012,7 +2011,9 @@ boundary<2> session<2>::next(const boundary<2>& previous, const std::vector<poin
 template <>
 boundary<3> session<3>::next(const boundary<3>& previous, const std::vector<point3>& added, const std::vector<std::size_t>& split) {
   auto& m = *impl_;
-  const bool same = m.s && previous.points.size() == m.points && previous.faces.size() == m.faces;
+  // handed what the last call returned (compared in full: a copy of the points and faces)
+  const bool same = m.s && previous.points == m.s->out().points && previous.faces == m.s->out().faces &&
+                    previous.face_source == m.s->out().face_source;
   std::unique_ptr<state3> s = same ? std::move(m.s) : nullptr;  // a throw below leaves none
   boundary<3> b;
   if (s) {
@@ -2022,7 +2023,6 @@ boundary<3> session<3>::next(const boundary<3>& previous, const std::vector<poin
     s->restore(previous, added);
     b = s->resume_run(previous, split, true);
   }
-  m.points = b.points.size(), m.faces = b.faces.size();
   m.s = std::move(s);
   return b;
 }
