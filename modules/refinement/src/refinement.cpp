@@ -172,8 +172,10 @@ class accepted_points {
 }  // namespace
 
 /// Smallest and largest dihedral angle of a tetrahedron, degrees.
-std::pair<double, double> dihedral_range(const std::vector<point3>& p, const std::array<vertex_id, 4>& c) {
-  double lo = 180, hi = 0;
+/// The largest and smallest cosine of the six dihedral angles of tetrahedron c (doubles: a
+/// shape measure, no topology): an angle below A degrees has a cosine above cos A.
+std::pair<double, double> dihedral_cosines(const std::vector<point3>& p, const std::array<vertex_id, 4>& c) {
+  double most = -1, least = 1;
   for (std::size_t i = 0; i < 4; ++i)
     for (std::size_t j = i + 1; j < 4; ++j) {
       std::size_t k = 0;
@@ -181,11 +183,10 @@ std::pair<double, double> dihedral_range(const std::vector<point3>& p, const std
       const std::size_t l = 6 - i - j - k;
       const point3 e = p[c[j]] - p[c[i]];
       const point3 n1 = cross(e, p[c[k]] - p[c[i]]), n2 = cross(e, p[c[l]] - p[c[i]]);
-      const double cosv = dot(n1, n2) / std::sqrt(dot(n1, n1) * dot(n2, n2));
-      const double a = std::acos(std::clamp(cosv, -1.0, 1.0)) * 180 / std::numbers::pi;
-      lo = std::min(lo, a), hi = std::max(hi, a);
+      const double cosv = std::clamp(dot(n1, n2) / std::sqrt(dot(n1, n1) * dot(n2, n2)), -1.0, 1.0);
+      most = std::max(most, cosv), least = std::min(least, cosv);
     }
-  return {lo, hi};
+  return {most, least};
 }
 
 template <std::size_t D>
@@ -332,6 +333,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       if (squared_distance(x, guarded[g].at) < guarded[g].r * guarded[g].r) return g;
     return guarded.size();
   };
+  const double cos_sliver = std::cos(sliver * std::numbers::pi / 180), cos_flat = std::cos((180 - 2 * sliver) * std::numbers::pi / 180);
   for_each(execution::par(threads), ids, [&](std::size_t k) {
     char* flag = chunks[k].todo;
     for (std::size_t ci = 0; ci < chunks[k].cells.size(); ++ci) {
@@ -348,8 +350,9 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       bool bad_shape = r > bound * std::sqrt(shortest);
       if constexpr (D == 3) {
         if (!bad_shape && sliver > 0) {
-          const auto [lo, hi] = dihedral_range(p, c);
-          bad_shape = lo < sliver || hi > 180 - 2 * sliver;
+          // an angle below `sliver` or above 180 - 2 sliver degrees, by cosines (no acos per cell)
+          const auto [most, least] = dihedral_cosines(p, c);
+          bad_shape = most > cos_sliver || least < cos_flat;
         }
       }
       if (!bad_shape && !(size && 3 * r * r > size(at) * size(at))) {
@@ -675,7 +678,11 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   std::vector<std::size_t> which(differ.size());
   std::iota(which.begin(), which.end(), std::size_t{0});
   for_each(execution::par(threads), which, [&](std::size_t i) {
-    const auto [a0, e0, a1, e1] = differ[i];
+    auto [a0, e0, a1, e1] = differ[i];
+    // a common head and tail (the same faces in the same places: a facet wrapped again keeps the
+    // order of what no new point disturbed) neither went nor came; only the middle is compared
+    while (a0 < e0 && a1 < e1 && b0.faces[a0] == b1.faces[a1]) ++a0, ++a1;
+    while (a0 < e0 && a1 < e1 && b0.faces[e0 - 1] == b1.faces[e1 - 1]) --e0, --e1;
     std::vector<face_t<D>> old_keys, new_keys;
     old_keys.reserve(e0 - a0), new_keys.reserve(e1 - a1);
     for (std::size_t f = a0; f < e0; ++f) old_keys.push_back(key_of<D>(b0.faces[f]));
