@@ -169,9 +169,23 @@ class accepted_points {
   std::vector<point<D>> points_;
 };
 
+/// The Morton code of x's cell in a 2^bits lattice over the box [lo, hi] (bits * D <= 64): the
+/// lattice coordinates' bits interleaved, so that nearby codes are nearby cells.
+template <std::size_t D>
+std::uint64_t morton_code(const point<D>& x, const point<D>& lo, const point<D>& hi, int bits) {
+  const double cells = std::ldexp(1.0, bits);
+  std::uint64_t m = 0;
+  for (std::size_t k = 0; k < D; ++k) {
+    const double e = hi[k] - lo[k];
+    const double t = e > 0 ? (x[k] - lo[k]) / e : 0;
+    const auto q = static_cast<std::uint64_t>(std::clamp(t * cells, 0.0, cells - 1));
+    for (int bit = 0; bit < bits; ++bit) m |= ((q >> bit) & 1u) << (static_cast<std::size_t>(bit) * D + k);
+  }
+  return m;
+}
+
 }  // namespace
 
-/// Smallest and largest dihedral angle of a tetrahedron, degrees.
 /// The largest and smallest cosine of the six dihedral angles of tetrahedron c (doubles: a
 /// shape measure, no topology): an angle below A degrees has a cosine above cos A.
 std::pair<double, double> dihedral_cosines(const std::vector<point3>& p, const std::array<vertex_id, 4>& c) {
@@ -911,14 +925,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       for (const auto& F : pieces[i])
         for (auto v : F)
           for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], p[v][k]), hi[k] = std::max(hi[k], p[v][k]);
-      std::uint64_t m = 0;
-      for (std::size_t k = 0; k < D; ++k) {
-        const double e = all_hi[k] - all_lo[k];
-        const double t = e > 0 ? (0.5 * (lo[k] + hi[k]) - all_lo[k]) / e : 0;
-        const auto q = static_cast<std::uint64_t>(std::clamp(t * 1024, 0.0, 1023.0));
-        for (std::uint64_t bit = 0; bit < 10; ++bit) m |= ((q >> bit) & 1u) << (bit * D + k);
-      }
-      order[i] = {m, i};
+      order[i] = {morton_code<D>(0.5 * (lo + hi), all_lo, all_hi, 10), i};
     }
     std::sort(order.begin(), order.end());
     for (auto [m, i] : order) {
@@ -1059,15 +1066,7 @@ void spatial_order(cells_by_region<D>& cells, const std::vector<point<D>>& p, un
     for (std::size_t i = 0; i < cs.size(); ++i) {
       point<D> g{};
       for (auto v : cs[i]) g = g + p[v];
-      g = (1.0 / (D + 1)) * g;
-      std::uint64_t m = 0;
-      for (std::size_t k = 0; k < D; ++k) {
-        const double e = hi[k] - lo[k];
-        const double t = e > 0 ? (g[k] - lo[k]) / e : 0;
-        const auto q = static_cast<std::uint64_t>(std::clamp(t * (1u << bits), 0.0, static_cast<double>((1u << bits) - 1)));
-        for (int bit = 0; bit < bits; ++bit) m |= ((q >> bit) & 1u) << (static_cast<std::size_t>(bit) * D + k);
-      }
-      key[i] = {m, static_cast<std::uint32_t>(i)};
+      key[i] = {morton_code<D>((1.0 / (D + 1)) * g, lo, hi, bits), static_cast<std::uint32_t>(i)};
     }
     std::sort(key.begin(), key.end());
     std::vector<cell_t<D>> sorted(cs.size());
