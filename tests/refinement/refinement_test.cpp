@@ -492,3 +492,27 @@ BOOST_AUTO_TEST_CASE(bench_structures_refined) {
     BOOST_TEST(q.below5 + q.above170 == 0u);
   }
 }
+
+// A thin layer (0.02 under a size of 0.1) between two slanted walls: the walls' points are each
+// other's images, so the layer is filled with prisms whose six vertices are (nearly) cospherical.
+// Rounding used to decide each prism by itself and join neighbours that split their common side
+// differently by a flat tetrahedron, which the sliver rule then refined by splitting the walls
+// again and again: 20,003 points rotated against 4,155 axis-aligned. With the wall images sheared
+// (conformer: wall_shear) 5,674; the rest comes from the layer's rims, whose edge points are
+// images of each other unsheared (modules/refinement/README.md).
+BOOST_AUTO_TEST_CASE(thin_layer_rotated_like_axis_aligned) {
+  std::size_t points[2] = {0, 0};
+  for (bool rotated : {false, true}) {
+    pl::report r;
+    auto o = quality_options(1.414, 2, 0.1);
+    o.graded = false;  // the lattice of one spacing, as `--size` gives it
+    const auto d = pl::mesh(stack(1, {0, 0.2, 0.22, 0.4}, rotated), {}, o, r);
+    BOOST_TEST(r.problems.empty());
+    const auto q = pl::measure(d);
+    BOOST_TEST(r.refinement.converged);
+    BOOST_TEST(q.below5 + q.above170 == 0u);
+    points[rotated] = d.points().size();
+  }
+  BOOST_TEST_MESSAGE("thin layer: " << points[0] << " points axis-aligned, " << points[1] << " rotated");
+  BOOST_TEST(points[1] <= 1.5 * points[0], points[1] << " points rotated vs " << points[0] << " axis-aligned");
+}

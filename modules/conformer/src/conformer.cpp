@@ -1510,6 +1510,13 @@ class state3 : public state<3> {
       const std::function<bool(const point3&)> in_facet = [&](const point3& q) { return locate(c.f, q, c.t) >= 0; };
       s.q = split_point_of(element_kind::subfacet, s.rel, elem, p[c.y], sv ? &p[*sv] : nullptr, se ? &edge_pts : nullptr, nullptr,
                            s.fired, &in_facet);
+      if (s.fired && *s.fired == rules::split_action::project) {
+        // the projection of a point across a thin layer, sheared like the lattices (wall_shear):
+        // q moves by wall_shear times the encroacher's height above it (q's plane offset minus
+        // the encroacher's), so that images of images stay images
+        const point3 sq = s.q - wall_shift(S, dot(p[c.y] - s.q, shear_frame(S).second));
+        if (in_facet(sq)) s.q = sq;
+      }
     } else {
       s.q = split_point_of(element_kind::subfacet, relation::on_carrier, elem, elem[0], nullptr, nullptr, nullptr, s.fired);
     }
@@ -1642,6 +1649,36 @@ class state3 : public state<3> {
     return splits;
   }
 
+  /// Thin layers between slanted parallel facets: the points of one wall are the other's images
+  /// (projections, and lattices that match point for point), so the layer is filled with right
+  /// prisms whose six vertices are cospherical. On an axis-aligned wall the images are exact and
+  /// the symbolic perturbation triangulates every prism the same way; on a slanted one rounding
+  /// (and the 1e-10 jitter) decides each prism by itself, and where two neighbours split their
+  /// common side differently a flat tetrahedron joins them (its four vertices a rectangle, a
+  /// dihedral angle of 0 degrees). Sliver refinement then split the walls again and again: the
+  /// rotated trench ended with 2.5 times the points of the axis-aligned one. So on slanted facets
+  /// an image is sheared: moved by `wall_shear` times its distance across the layer along the
+  /// plane's canonical in-plane direction (lattice_frame), a linear map, the same for every pair
+  /// of parallel planes, so the prisms lean all one way, their sides are parallelograms that are
+  /// not cocircular, and no flat tetrahedron is Delaunay. 1e-4 of the thickness is far above
+  /// rounding and far below anything a mesh shows; a wall point stays outside the equatorial balls
+  /// about its sheared image while the wall's triangles are under 5,000 times the layer's
+  /// thickness (beyond that it splits one of them again, as an unsheared point would split a
+  /// triangle it encroached).
+  static constexpr double wall_shear = 1e-4;
+  /// The canonical in-plane direction and normal of a facet's plane (the same for both
+  /// orientations of a plane and for every plane parallel to it).
+  static std::pair<point3, point3> shear_frame(const facet_state& S) {
+    const auto [u, v] = lattice_frame(S);
+    return {u, cross(u, v)};
+  }
+  /// The shift of a point of facet S whose plane lies `offset` along the canonical normal from the
+  /// lattices' origin (nothing on an axis-aligned facet, whose images are exact).
+  static point3 wall_shift(const facet_state& S, double offset) {
+    if (S.constant[static_cast<std::size_t>(S.axis)]) return {};
+    return (wall_shear * offset) * shear_frame(S).first;
+  }
+
   /// A facet's in-plane orthonormal frame for its lattices, from the normal only: e1 = unit x
   /// (least axis), flipped with the normal so that the two orientations of a plane get the same
   /// frame (parallel facets then get the same lattice).
@@ -1680,6 +1717,7 @@ class state3 : public state<3> {
       const point3 o = out_.points[vs[0]];
       const auto [u, v] = lattice_frame(S);
       const double ao = dot(o - origin, u), bo = dot(o - origin, v);
+      const point3 shift = wall_shift(S, dot(o - origin, shear_frame(S).second));
       double ulo = 1e300, uhi = -1e300, vlo = 1e300, vhi = -1e300;
       for (vertex_id w : vs) {
         const point3 d = out_.points[w] - origin;
@@ -1699,7 +1737,7 @@ class state3 : public state<3> {
           const double a = h * (static_cast<double>(i) + 0.0137 + 0.5 * static_cast<double>(j & 1));
           const double b = row * (static_cast<double>(j) + 0.0271);
           if (a < ulo || a > uhi || b < vlo) continue;
-          point3 q = o + (a - ao) * u + (b - bo) * v;
+          point3 q = o + (a - ao) * u + (b - bo) * v + shift;
           for (std::size_t k = 0; k < 3; ++k)
             if (S.constant[k]) q[k] = S.constant_value[k];
           bool clear = true;
@@ -1732,8 +1770,9 @@ class state3 : public state<3> {
       const auto [u, v] = lattice_frame(S);
       const point3 o = out_.points[vs[0]];
       const double ao = dot(o - origin, u), bo = dot(o - origin, v);
+      const point3 shift = wall_shift(S, dot(o - origin, shear_frame(S).second));
       auto lift = [&](const point2& x) {
-        point3 q = o + (x[0] - ao) * u + (x[1] - bo) * v;
+        point3 q = o + (x[0] - ao) * u + (x[1] - bo) * v + shift;
         for (std::size_t k = 0; k < 3; ++k)
           if (S.constant[k]) q[k] = S.constant_value[k];
         return q;
