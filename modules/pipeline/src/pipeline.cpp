@@ -335,7 +335,11 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
     // of the faces' bounding boxes; double distances only place points, they decide no topology
     const double keep = 0.5 * h;
     hash_grid<D> near(lo, keep);
-    for (std::uint32_t f = 0; f < b.faces.size(); ++f) insert_bounds(near, f, b.points, b.faces[f]);
+    for (std::uint32_t f = 0; f < b.faces.size(); ++f) {
+      std::array<point<D>, D> v;
+      for (std::size_t k = 0; k < D; ++k) v[k] = b.points[b.faces[f][k]];
+      near.insert_simplex(f, v);  // not its box: a slanted facet's box is a volume of cells
+    }
     auto face_distance2 = [&](std::uint32_t f, const point<D>& q) {
       const auto& F = b.faces[f];
       if constexpr (D == 2) {

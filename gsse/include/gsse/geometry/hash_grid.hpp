@@ -37,6 +37,62 @@ class hash_grid {
       return true;
     });
   }
+  /// Files id in the cells a segment (2D) or triangle (3D) `v` meets, and a few more (not in every
+  /// cell of its bounding box: a slanted facet's box holds (L/s)^3 cells, the facet about (L/s)^2).
+  /// Columns along the axis its normal is largest in: in each column (one cell wide across the
+  /// other axes, within the box) the cells from the lowest to the highest height the simplex's
+  /// line or plane reaches over the column, padded by a cell each way for rounding, clipped to
+  /// the box.
+  /// Every cell holding a point of the simplex is among them. A degenerate simplex: its box.
+  void insert_simplex(std::uint32_t id, const std::array<point<D>, D>& v) {
+    point<D> lo = v[0], hi = v[0];
+    for (const auto& q : v)
+      for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+    point<D> n{};
+    if constexpr (D == 2) {
+      n = {v[0][1] - v[1][1], v[1][0] - v[0][0]};
+    } else {
+      const point<D> a = v[1] - v[0], b = v[2] - v[0];
+      n = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    }
+    std::size_t k = 0;
+    for (std::size_t i = 1; i < D; ++i)
+      if (std::abs(n[i]) > std::abs(n[k])) k = i;
+    if (!(std::abs(n[k]) > 0)) return insert_box(id, lo, hi);
+    const cell a = cell_of(lo), b = cell_of(hi);
+    const double s = 1.0 / inv_;
+    // the simplex's height along k over the column: x_k = v0_k - sum_{i != k} n_i (x_i - v0_i) / n_k
+    auto height = [&](const point<D>& x) {
+      double h = v[0][k];
+      for (std::size_t i = 0; i < D; ++i)
+        if (i != k) h -= n[i] * (x[i] - v[0][i]) / n[k];
+      return h;
+    };
+    cell lo_col = a, hi_col = b;
+    lo_col[k] = hi_col[k] = 0;
+    for_cells(lo_col, hi_col, [&](const cell& c) {
+      double zlo = 1e300, zhi = -1e300;
+      for (unsigned corner = 0; corner < (1u << D); ++corner) {
+        if (corner & (1u << k)) continue;
+        point<D> x{};
+        for (std::size_t i = 0; i < D; ++i)
+          if (i != k) x[i] = o_[i] + s * static_cast<double>(c[i] + ((corner >> i) & 1u));
+        const double z = height(x);
+        zlo = std::min(zlo, z), zhi = std::max(zhi, z);
+      }
+      point<D> p0{}, p1{};
+      p0[k] = std::max(zlo - s, lo[k]), p1[k] = std::min(zhi + s, hi[k]);
+      if (p0[k] > p1[k]) return true;
+      cell from = c, to = c;
+      from[k] = std::max(a[k], cell_of(p0)[k]), to[k] = std::min(b[k], cell_of(p1)[k]);
+      for (long z = from[k]; z <= to[k]; ++z) {
+        cell at = c;
+        at[k] = z;
+        bucket(key(at)).push_back(id);
+      }
+      return true;
+    });
+  }
   /// Calls f(id) for the ids in the cells the box [lo, hi] meets (an id filed in several of them
   /// comes several times; a box of more cells than are occupied scans all occupied cells). If f
   /// returns bool, false stops the scan and visit returns false.
