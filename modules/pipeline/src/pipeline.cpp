@@ -2,6 +2,7 @@
 #include "gsse/geometry/circumcentre.hpp"
 
 #include <atomic>
+#include <limits>
 #include <chrono>
 #include <condition_variable>
 #include <exception>
@@ -274,6 +275,19 @@ struct coarse_model {
     return found;
   }
   bool in_segment(const point<D>& q) const { return region_of(q) >= 0; }
+  /// in_segment, trying first the cell that held the last point asked with the same `hint`
+  /// (points asked in a row, as a lattice's, mostly share a coarse cell; a slanted coarse cell's
+  /// box is filed in many buckets, each then holding many cells to test). The same answer.
+  bool in_segment(const point<D>& q, std::uint32_t& hint) const {
+    if (hint < cells.size() && inside_cell(b.points, cells[hint], q)) return true;
+    bool found = false;
+    buckets->visit_ring(q, 0, [&](std::uint32_t c) {
+      if (!inside_cell(b.points, cells[c], q)) return true;
+      found = true, hint = c;
+      return false;
+    });
+    return found;
+  }
 };
 
 /// The user's cloud points that lie in a segment appended to `out` (the others counted in
@@ -325,7 +339,7 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
                                      std::size_t& dropped, unsigned threads, bool lattice) {
   const auto& b = m.b;
   const point<D> lo = m.lo, hi = m.hi;
-  auto in_segment = [&](const point<D>& q) { return m.in_segment(q); };
+  auto in_segment = [&](const point<D>& q, std::uint32_t& hint) { return m.in_segment(q, hint); };
   conformer::options co;
   co.threads = threads;
   std::vector<point<D>> out;
@@ -366,8 +380,9 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
     for_each(execution::par(co.threads), ids, [&](long s) {
       // filled locally, moved once: neighbouring vectors' headers share cache lines
       std::vector<point<D>> out_s;
+      std::uint32_t hint = std::numeric_limits<std::uint32_t>::max();
       auto consider = [&](const point<D>& q) {
-        if (clear_of_boundary(q) && in_segment(q)) out_s.push_back(q);
+        if (clear_of_boundary(q) && in_segment(q, hint)) out_s.push_back(q);
       };
       if constexpr (D == 3) {
         for (long i = 0; i < n[0]; ++i)
