@@ -652,7 +652,8 @@ double cell_measure(const std::vector<point<D>>& p, const cell_t<D>& c) {
 template <std::size_t D>
 bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary<D>& b1, const conformer::labelling& l0,
                      const conformer::labelling& l1, cells_by_region<D>& cells, unsigned threads, std::size_t* removed_count,
-                     std::size_t* made_count, std::vector<std::vector<char>>* flags, balls_by_region<D>* balls) {
+                     std::size_t* made_count, std::vector<std::vector<char>>* flags, balls_by_region<D>* balls,
+                     runs_by_region<D>* kept_runs) {
   const auto& p = b1.points;
   const std::size_t n0 = b0.points.size();
   if (p.size() < n0 || l0.regions.size() != l1.regions.size() || cells.size() != l1.regions.size()) return false;
@@ -723,6 +724,17 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   if (p.size() == n0 && gone_faces.empty() && came_faces.empty()) return true;
   if (flags && flags->size() != cells.size()) return false;
   if (balls && balls->size() != cells.size()) return false;
+  if (!balls) kept_runs = nullptr;  // a run's box is made of its cells' kept balls
+  if (kept_runs) {
+    kept_runs->resize(cells.size());
+    for (std::size_t r = 0; r < cells.size(); ++r) (*kept_runs)[r].resize((cells[r].size() + cell_run - 1) / cell_run);
+  }
+  // the vertices of the faces that went, by place: a run whose balls' box holds none has no cell
+  // resting on such a face
+  std::vector<point<D>> gone_at;
+  for (std::size_t v = 0; v < p.size(); ++v)
+    if (on_gone[v]) gone_at.push_back(p[v]);
+  const point_bins<D> gone_bins(gone_at, 0);
   // 1. the cavities: cells whose perturbed ball holds a new point, or that rest on a gone face
   const point_bins<D> bins(p, n0);
   struct chunk {
@@ -760,10 +772,36 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   for_each(execution::par(threads), chunks, [&](const chunk& ch) {
     // runs of 256 cells (spatial_order makes them lie together): a run with no cell on D marked
     // vertices, no flat cell and no new point in the box of its balls has no dead cell
-    constexpr std::size_t run = 256;
+    constexpr std::size_t run = cell_run;  // chunks start at multiples of it
     for (std::size_t a = ch.first; a < ch.first + ch.count; a += run) {
       const std::size_t e = std::min(a + run, ch.first + ch.count);
       bool look = false;
+      if (kept_runs) {
+        // the run's kept box (balls padded; a cell's vertices lie in its ball)
+        auto& R = (*kept_runs)[ch.region][a / run];
+        if (!R.valid) {
+          R.lo.fill(std::numeric_limits<double>::infinity());
+          R.hi.fill(-std::numeric_limits<double>::infinity());
+          R.flat = false;
+          for (std::size_t i = a; i < e; ++i) {
+            cell_ball<D> own;
+            const auto& ball = ball_of(ch.region, i, own);
+            if (ball.pad == cell_ball<D>::flat) {
+              R.flat = true;
+              continue;
+            }
+            for (std::size_t k = 0; k < D; ++k)
+              R.lo[k] = std::min(R.lo[k], ball.at[k] - ball.pad), R.hi[k] = std::max(R.hi[k], ball.at[k] + ball.pad);
+          }
+          R.valid = true;
+        }
+        look = R.flat || (!gone_at.empty() && gone_bins.any(R.lo, R.hi, [&](vertex_id y) {
+                 for (std::size_t k = 0; k < D; ++k)
+                   if (gone_at[y][k] < R.lo[k] || gone_at[y][k] > R.hi[k]) return false;
+                 return true;
+               })) || (p.size() > n0 && new_point_in(R.lo, R.hi));
+        if (!look) continue;
+      } else {
       point<D> lo, hi;
       lo.fill(std::numeric_limits<double>::infinity());
       hi.fill(-std::numeric_limits<double>::infinity());
@@ -778,6 +816,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], ball.at[k] - ball.pad), hi[k] = std::max(hi[k], ball.at[k] + ball.pad);
       }
       if (!look && (p.size() == n0 || !new_point_in(lo, hi))) continue;
+      }
       for (std::size_t i = a; i < e; ++i) {
         cell_t<D> c = cells[ch.region][i];
         char& out = dead[ch.region][i];
@@ -1022,6 +1061,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         dr[i] = 0;
         if (balls) (*balls)[r][i] = cell_ball<D>{};  // unknown
         if (flags) (*flags)[r][i] = 1;               // not looked at yet
+        if (kept_runs) (*kept_runs)[r][i / cell_run].valid = false;
       }
     if (holes) {  // every new cell is placed: close up over the dead ones left
       std::size_t w = 0;
@@ -1035,11 +1075,16 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       cs.resize(w);
       if (balls) (*balls)[r].resize(w);
       if (flags) (*flags)[r].resize(w);
+      if (kept_runs) (*kept_runs)[r].assign((w + cell_run - 1) / cell_run, run_box<D>{});  // cells moved
       return;
     }
     for (cell_t<D> c; next_new(c);) cs.push_back(c);
     if (balls) (*balls)[r].resize(cs.size());
     if (flags) (*flags)[r].resize(cs.size(), 1);
+    if (kept_runs) {
+      if (cs.size() > old_size && old_size % cell_run != 0) (*kept_runs)[r][old_size / cell_run].valid = false;
+      (*kept_runs)[r].resize((cs.size() + cell_run - 1) / cell_run);  // new runs: not valid yet
+    }
   }, [&](std::size_t r) { return static_cast<double>(cells[r].size()); });
   const std::size_t count = std::accumulate(added.begin(), added.end(), std::size_t{0});
   if (removed_count) *removed_count = removed;
@@ -1095,6 +1140,7 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     return kept;
   };
   auto balls = no_balls(cells);
+  runs_by_region<D> runs;  // built by remesh_cavities as it needs them
   // the conformer stays alive between rounds: each round's boundary work follows the points it
   // adds, not the size of the boundary (conformer::session)
   conformer::session<D> boundary_rounds(p, co);
@@ -1138,13 +1184,14 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       // remesh_cavities changes cells and todo only when it succeeds, and a full meshing that
       // throws assigns nothing: the last good mesh survives a failed round without a copy
       std::size_t removed = 0, made = 0;
-      if (remesh_cavities(b, b2, l, l2, cells, o.threads, &removed, &made, &todo, &balls)) {
+      if (remesh_cavities(b, b2, l, l2, cells, o.threads, &removed, &made, &todo, &balls, &runs)) {
         st.cavity_cells += removed, st.cavity_made += made;
       } else {
         cells = mesh.wrap(b2, l2);
         spatial_order(cells, b2.points, o.threads);
         todo = all_todo(cells);
         balls = no_balls(cells);
+        runs.clear();
         ++st.full_remeshes;
       }
       st.mesh_seconds += lap();
@@ -1168,10 +1215,10 @@ template plan<3> plan_round<3>(const cells_by_region<3>&, const conformer::bound
                                std::vector<std::vector<char>>*, double);
 template bool remesh_cavities<2>(const conformer::boundary<2>&, const conformer::boundary<2>&, const conformer::labelling&,
                                  const conformer::labelling&, cells_by_region<2>&, unsigned, std::size_t*, std::size_t*,
-                                 std::vector<std::vector<char>>*, balls_by_region<2>*);
+                                 std::vector<std::vector<char>>*, balls_by_region<2>*, runs_by_region<2>*);
 template bool remesh_cavities<3>(const conformer::boundary<3>&, const conformer::boundary<3>&, const conformer::labelling&,
                                  const conformer::labelling&, cells_by_region<3>&, unsigned, std::size_t*, std::size_t*,
-                                 std::vector<std::vector<char>>*, balls_by_region<3>*);
+                                 std::vector<std::vector<char>>*, balls_by_region<3>*, runs_by_region<3>*);
 template domain<2> refine<2>(const plc<2>&, conformer::boundary<2>&, conformer::labelling&, cells_by_region<2>, const conformer::options&,
                              const options&, const meshers<2>&, stats&);
 template domain<3> refine<3>(const plc<3>&, conformer::boundary<3>&, conformer::labelling&, cells_by_region<3>, const conformer::options&,

@@ -126,12 +126,25 @@ struct cell_ball {
 };
 template <std::size_t D>
 using balls_by_region = std::vector<std::vector<cell_ball<D>>>;
+/// `runs` (optional, with `balls`): per run of `cell_run` consecutive cells, the box of their
+/// balls and whether one is flat, kept from round to round until a cell of the run changes: a
+/// round then reads a box per run, not every cell, to find the runs no new point and no vertex of
+/// a split face comes near.
+inline constexpr std::size_t cell_run = 256;
+template <std::size_t D>
+struct run_box {
+  point<D> lo{}, hi{};
+  bool flat = false, valid = false;
+};
+template <std::size_t D>
+using runs_by_region = std::vector<std::vector<run_box<D>>>;
 
 template <std::size_t D>
 bool remesh_cavities(const conformer::boundary<D>& before, const conformer::boundary<D>& after,
                      const conformer::labelling& labels_before, const conformer::labelling& labels_after,
                      cells_by_region<D>& cells, unsigned threads, std::size_t* removed = nullptr, std::size_t* made = nullptr,
-                     std::vector<std::vector<char>>* flags = nullptr, balls_by_region<D>* balls = nullptr);
+                     std::vector<std::vector<char>>* flags = nullptr, balls_by_region<D>* balls = nullptr,
+                     runs_by_region<D>* runs = nullptr);
 
 /// Refines `cells`, the mesh of boundary `b` (labelled `l`) of PLC `p`, until no element exceeds
 /// the bound except the excepted ones, or the round or point cap is reached (stats says which).
