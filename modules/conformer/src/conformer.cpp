@@ -704,6 +704,7 @@ struct facet_state {
   std::vector<std::array<vertex_id, 2>> seams;                     // merged facets' shared edges (no constraint)
   std::vector<vertex_id> balls;                                    // corners with a protecting ball
   std::vector<std::array<vertex_id, 4>> not_flat;                  // pairs known not to be flat cells (sorted)
+  std::vector<vertex_id> flat_checked;                             // `wrapped` at the last flat_pairs
   std::vector<std::array<vertex_id, 3>> triangles;                 // ccw in the projection
   // the triangles by cells of a uniform grid over their projected boxes (locate())
   struct triangle_cells {
@@ -1427,13 +1428,39 @@ class state3 : public state<3> {
       const std::uint32_t f = fs[i];
       const auto& S = facets_[f];
       if (S.constant[static_cast<std::size_t>(S.axis)]) return;  // exactly planar: no such tetrahedra
+      // Only pairs with a triangle new since this facet's last check: the triangulation is the
+      // (constrained, perturbed) Delaunay triangulation of the facet's vertices, so a triangle of
+      // vertices all there at the last check was there then (its empty circle is empty in the
+      // smaller set) and its pairs were checked then. The new triangles are those with a vertex
+      // added since; a partner across an edge has both ends of that edge among their vertices.
+      std::vector<vertex_id> added;
+      const bool all = S.flat_checked.empty();
+      if (!all)
+        std::set_difference(S.wrapped.begin(), S.wrapped.end(), S.flat_checked.begin(), S.flat_checked.end(),
+                            std::back_inserter(added));
+      auto among = [](const std::vector<vertex_id>& set, const std::array<vertex_id, 3>& T) {
+        return std::binary_search(set.begin(), set.end(), T[0]) || std::binary_search(set.begin(), set.end(), T[1]) ||
+               std::binary_search(set.begin(), set.end(), T[2]);
+      };
+      std::vector<char> fresh_tri;  // per triangle: new since the last check
+      std::vector<vertex_id> near;  // the new triangles' vertices
+      if (!all) {
+        fresh_tri.resize(S.triangles.size());
+        for (std::uint32_t t = 0; t < S.triangles.size(); ++t)
+          if ((fresh_tri[t] = among(added, S.triangles[t])))
+            near.insert(near.end(), S.triangles[t].begin(), S.triangles[t].end());
+        std::sort(near.begin(), near.end());
+        near.erase(std::unique(near.begin(), near.end()), near.end());
+      }
       // each interior edge once: (sorted edge, triangle, apex)
       std::vector<std::tuple<std::uint64_t, std::uint32_t, vertex_id>> half;
-      for (std::uint32_t t = 0; t < S.triangles.size(); ++t)
+      for (std::uint32_t t = 0; t < S.triangles.size(); ++t) {
+        if (!all && !fresh_tri[t] && !among(near, S.triangles[t])) continue;
         for (std::size_t k = 0; k < 3; ++k) {
           const vertex_id u = S.triangles[t][(k + 1) % 3], v = S.triangles[t][(k + 2) % 3];
           half.push_back({(std::uint64_t{std::min(u, v)} << 32) | std::max(u, v), t, S.triangles[t][k]});
         }
+      }
       std::sort(half.begin(), half.end());
       std::vector<split_candidate> mine;
       std::vector<std::array<vertex_id, 4>> fresh;
@@ -1441,6 +1468,7 @@ class state3 : public state<3> {
         const auto& [key, t, w] = half[k];
         const auto& [key2, t2, z] = half[k + 1];
         if (key != key2) continue;
+        if (!all && !fresh_tri[t] && !fresh_tri[t2]) continue;  // checked before
         const auto u = static_cast<vertex_id>(key >> 32), v = static_cast<vertex_id>(key & 0xffffffffu);
         // the tetrahedron lies on the side of triangle t (oriented like the facet) where z is:
         // only a side that gets meshed matters
@@ -1458,7 +1486,13 @@ class state3 : public state<3> {
       }
       std::sort(mine.begin(), mine.end(), [](const split_candidate& x, const split_candidate& y) { return x.t < y.t; });
       found[i] = std::move(mine);
-      if (!fresh.empty()) {  // only this task writes facet f's cache
+      // only this task writes facet f's state. A pair found flat is to be split; should it not
+      // be (a candidate skipped), the next check of this facet is a whole one again
+      if (mine.empty())
+        facets_[f].flat_checked = S.wrapped;
+      else
+        facets_[f].flat_checked.clear();
+      if (!fresh.empty()) {
         auto& cache = facets_[f].not_flat;
         std::sort(fresh.begin(), fresh.end());
         std::vector<std::array<vertex_id, 4>> merged;
