@@ -1382,7 +1382,7 @@ class state3 : public state<3> {
 
   /// Whether the tetrahedron abcd (not exactly flat) has a perturbed-empty circumsphere, i.e. is
   /// a cell of the Delaunay tetrahedralization of all points.
-  bool delaunay_cell(vertex_id a, vertex_id b, vertex_id c, vertex_id d) const {
+  bool delaunay_cell(vertex_id a, vertex_id b, vertex_id c, vertex_id d, std::uint32_t facet) const {
     const auto& p = out_.points;
     const int o = geometry::orient3d(p[a], p[b], p[c], p[d]);
     if (o == 0) return false;
@@ -1399,7 +1399,10 @@ class state3 : public state<3> {
     int ring = 0;
     std::size_t seen = 0;
     bool held = false;
-    grid_.finest().visit_rings(g, box_lo_, box_hi_, [&](vertex_id y) { return ++seen, !(held = !outside(y)); },
+    // (the facet's own points come last: they lie near the sphere's rim, outside it, where the
+    // test is least decided and most often exact)
+    auto off_facet = [&](vertex_id y) { return !(out_.homes[y].kind == home::facet && out_.homes[y].id == facet); };
+    grid_.finest().visit_rings(g, box_lo_, box_hi_, [&](vertex_id y) { return !off_facet(y) || (++seen, !(held = !outside(y))); },
                       [&] { return ++ring > 2 && (seen >= 64 || ring > 6); });
     if (held) return false;
     point3 cc;
@@ -1479,7 +1482,7 @@ class state3 : public state<3> {
         std::array<vertex_id, 4> id{u, v, w, z};
         std::sort(id.begin(), id.end());
         if (std::binary_search(S.not_flat.begin(), S.not_flat.end(), id)) continue;
-        if (delaunay_cell(u, v, w, z))
+        if (delaunay_cell(u, v, w, z, f))
           mine.push_back({f, std::max(t, t2), no_vertex, true});
         else
           fresh.push_back(id);
