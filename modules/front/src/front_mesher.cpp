@@ -108,14 +108,21 @@ std::vector<std::array<vertex_id, 3>> wrap_frame(std::span<const vertex_id> ids,
                                                  const std::string& label, const facet_lines* lines,
                                                  const facet_rewrap* again) {
   const point_grid<2> grid(uv, ids);
-  // id -> position in the grid's order (ids ascending: bisection in this table)
-  std::vector<std::pair<vertex_id, vertex_id>> at(grid.size());
-  for (std::size_t k = 0; k < grid.size(); ++k) at[k] = {grid.id_at(k), static_cast<vertex_id>(k)};
-  std::sort(at.begin(), at.end());
+  // id -> position in the grid's order: a table indexed by id, kept per thread and never cleared
+  // (a facet's rewrap looks up every triangle it had; bisection in a sorted table of pairs was a
+  // fifth of the rotated trench's conformer). An entry is trusted only if the grid's point at that
+  // position has that id, so what earlier calls left in it is harmless.
+  thread_local std::vector<vertex_id> table;
+  vertex_id top = 0;
+  for (std::size_t k = 0; k < grid.size(); ++k) top = std::max(top, grid.id_at(k));
+  if (table.size() <= top) table.resize(static_cast<std::size_t>(top) + 1);
+  for (std::size_t k = 0; k < grid.size(); ++k) table[grid.id_at(k)] = static_cast<vertex_id>(k);
   auto pos = [&](vertex_id v) {
-    const auto it = std::lower_bound(at.begin(), at.end(), std::pair<vertex_id, vertex_id>{v, 0});
-    if (it == at.end() || it->first != v) throw front_error(label + ": boundary vertex " + std::to_string(v + 1) + " is not a point of the facet");
-    return it->second;
+    if (v < table.size()) {
+      const vertex_id k = table[v];
+      if (k < grid.size() && grid.id_at(k) == v) return k;
+    }
+    throw front_error(label + ": boundary vertex " + std::to_string(v + 1) + " is not a point of the facet");
   };
   frame_kernel k;
   k.p = grid.coords();
