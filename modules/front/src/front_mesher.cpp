@@ -111,16 +111,29 @@ std::vector<std::array<vertex_id, 3>> wrap_frame(std::span<const vertex_id> ids,
   // id -> position in the grid's order: a table indexed by id, kept per thread and never cleared
   // (a facet's rewrap looks up every triangle it had; bisection in a sorted table of pairs was a
   // fifth of the rotated trench's conformer). An entry is trusted only if the grid's point at that
-  // position has that id, so what earlier calls left in it is harmless.
+  // position has that id, so what earlier calls left in it is harmless. The table is used while
+  // the ids stay below 2^20 or 16 times the facet's points (at most 4 MB, or 64 bytes a point, per
+  // thread); beyond, bisection in a sorted table of (id, position) as before.
   thread_local std::vector<vertex_id> table;
   vertex_id top = 0;
   for (std::size_t k = 0; k < grid.size(); ++k) top = std::max(top, grid.id_at(k));
-  if (table.size() <= top) table.resize(static_cast<std::size_t>(top) + 1);
-  for (std::size_t k = 0; k < grid.size(); ++k) table[grid.id_at(k)] = static_cast<vertex_id>(k);
+  const bool direct = top < std::max<std::size_t>(std::size_t{1} << 20, 16 * grid.size());
+  std::vector<std::pair<vertex_id, vertex_id>> sorted;
+  if (direct) {
+    if (table.size() <= top) table.resize(static_cast<std::size_t>(top) + 1);
+    for (std::size_t k = 0; k < grid.size(); ++k) table[grid.id_at(k)] = static_cast<vertex_id>(k);
+  } else {
+    sorted.resize(grid.size());
+    for (std::size_t k = 0; k < grid.size(); ++k) sorted[k] = {grid.id_at(k), static_cast<vertex_id>(k)};
+    std::sort(sorted.begin(), sorted.end());
+  }
   auto pos = [&](vertex_id v) {
-    if (v < table.size()) {
+    if (direct && v < table.size()) {
       const vertex_id k = table[v];
       if (k < grid.size() && grid.id_at(k) == v) return k;
+    } else if (!direct) {
+      const auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair<vertex_id, vertex_id>{v, 0});
+      if (it != sorted.end() && it->first == v) return it->second;
     }
     throw front_error(label + ": boundary vertex " + std::to_string(v + 1) + " is not a point of the facet");
   };
