@@ -514,5 +514,5 @@ BOOST_AUTO_TEST_CASE(thin_layer_rotated_like_axis_aligned) {
     points[rotated] = d.points().size();
   }
   BOOST_TEST_MESSAGE("thin layer: " << points[0] << " points axis-aligned, " << points[1] << " rotated");
-  BOOST_TEST(points[1] <= 1.5 * points[0], points[1] << " points rotated vs " << points[0] << " axis-aligned");
+  BOOST_TEST(static_cast<double>(points[1]) <= 1.5 * static_cast<double>(points[0]), points[1] << " points rotated vs " << points[0] << " axis-aligned");
 }

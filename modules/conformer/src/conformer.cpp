@@ -1399,8 +1399,8 @@ class state3 : public state<3> {
     int ring = 0;
     std::size_t seen = 0;
     bool held = false;
-    // (the facet's own points come last: they lie near the sphere's rim, outside it, where the
-    // test is least decided and most often exact)
+    // (skipping the facet's own points: they lie near the sphere's rim, outside it, where the
+    // test is least decided and most often exact; the exact scan below reads them too)
     auto off_facet = [&](vertex_id y) { return !(out_.homes[y].kind == home::facet && out_.homes[y].id == facet); };
     grid_.finest().visit_rings(g, box_lo_, box_hi_, [&](vertex_id y) { return !off_facet(y) || (++seen, !(held = !outside(y))); },
                       [&] { return ++ring > 2 && (seen >= 64 || ring > 6); });

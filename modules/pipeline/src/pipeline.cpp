@@ -2,10 +2,10 @@
 #include "gsse/geometry/circumcentre.hpp"
 
 #include <atomic>
-#include <limits>
 #include <chrono>
 #include <condition_variable>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <thread>
 #include <tuple>
@@ -264,29 +264,31 @@ struct coarse_model {
     buckets = std::make_unique<hash_grid<D>>(lo, cell);
     for (std::uint32_t c = 0; c < cells.size(); ++c) insert_bounds(*buckets, c, b.points, cells[c]);
   }
-  /// Region index of the coarse cell holding q, or -1.
-  int region_of(const point<D>& q) const {
-    int found = -1;
+  static constexpr std::uint32_t no_cell = std::numeric_limits<std::uint32_t>::max();
+  /// The coarse cell holding q (the first its bucket lists), or no_cell.
+  std::uint32_t cell_holding(const point<D>& q) const {
+    std::uint32_t found = no_cell;
     buckets->visit_ring(q, 0, [&](std::uint32_t c) {
       if (!inside_cell(b.points, cells[c], q)) return true;
-      found = cell_region[c];
+      found = c;
       return false;
     });
     return found;
   }
-  bool in_segment(const point<D>& q) const { return region_of(q) >= 0; }
+  /// Region index of the coarse cell holding q, or -1.
+  int region_of(const point<D>& q) const {
+    const std::uint32_t c = cell_holding(q);
+    return c == no_cell ? -1 : cell_region[c];
+  }
+  bool in_segment(const point<D>& q) const { return cell_holding(q) != no_cell; }
   /// in_segment, trying first the cell that held the last point asked with the same `hint`
   /// (points asked in a row, as a lattice's, mostly share a coarse cell; a slanted coarse cell's
   /// box is filed in many buckets, each then holding many cells to test). The same answer.
   bool in_segment(const point<D>& q, std::uint32_t& hint) const {
     if (hint < cells.size() && inside_cell(b.points, cells[hint], q)) return true;
-    bool found = false;
-    buckets->visit_ring(q, 0, [&](std::uint32_t c) {
-      if (!inside_cell(b.points, cells[c], q)) return true;
-      found = true, hint = c;
-      return false;
-    });
-    return found;
+    const std::uint32_t c = cell_holding(q);
+    if (c != no_cell) hint = c;
+    return c != no_cell;
   }
 };
 
@@ -380,7 +382,7 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
     for_each(execution::par(co.threads), ids, [&](long s) {
       // filled locally, moved once: neighbouring vectors' headers share cache lines
       std::vector<point<D>> out_s;
-      std::uint32_t hint = std::numeric_limits<std::uint32_t>::max();
+      std::uint32_t hint = coarse_model<D>::no_cell;
       auto consider = [&](const point<D>& q) {
         if (clear_of_boundary(q) && in_segment(q, hint)) out_s.push_back(q);
       };

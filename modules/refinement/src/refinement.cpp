@@ -724,11 +724,11 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   if (p.size() == n0 && gone_faces.empty() && came_faces.empty()) return true;
   if (flags && flags->size() != cells.size()) return false;
   if (balls && balls->size() != cells.size()) return false;
-  if (!balls) kept_runs = nullptr;  // a run's box is made of its cells' kept balls
-  if (kept_runs) {
-    kept_runs->resize(cells.size());
-    for (std::size_t r = 0; r < cells.size(); ++r) (*kept_runs)[r].resize((cells[r].size() + cell_run - 1) / cell_run);
-  }
+  // the runs' boxes: the caller's, kept from earlier rounds, or this call's own
+  runs_by_region<D> own_runs;
+  runs_by_region<D>& cell_runs = kept_runs ? *kept_runs : own_runs;
+  cell_runs.resize(cells.size());
+  for (std::size_t r = 0; r < cells.size(); ++r) cell_runs[r].resize((cells[r].size() + cell_run - 1) / cell_run);
   // the vertices of the faces that went, by place: a run whose balls' box holds none has no cell
   // resting on such a face
   std::vector<point<D>> gone_at;
@@ -770,53 +770,35 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     });
   };
   for_each(execution::par(threads), chunks, [&](const chunk& ch) {
-    // runs of 256 cells (spatial_order makes them lie together): a run with no cell on D marked
-    // vertices, no flat cell and no new point in the box of its balls has no dead cell
+    // runs of 256 cells (spatial_order makes them lie together): a run with no flat cell and
+    // neither a new point nor a vertex of a gone face in the box of its balls has no dead cell
     constexpr std::size_t run = cell_run;  // chunks start at multiples of it
     for (std::size_t a = ch.first; a < ch.first + ch.count; a += run) {
       const std::size_t e = std::min(a + run, ch.first + ch.count);
-      bool look = false;
-      if (kept_runs) {
-        // the run's kept box (balls padded; a cell's vertices lie in its ball)
-        auto& R = (*kept_runs)[ch.region][a / run];
-        if (!R.valid) {
-          R.lo.fill(std::numeric_limits<double>::infinity());
-          R.hi.fill(-std::numeric_limits<double>::infinity());
-          R.flat = false;
-          for (std::size_t i = a; i < e; ++i) {
-            cell_ball<D> own;
-            const auto& ball = ball_of(ch.region, i, own);
-            if (ball.pad == cell_ball<D>::flat) {
-              R.flat = true;
-              continue;
-            }
-            for (std::size_t k = 0; k < D; ++k)
-              R.lo[k] = std::min(R.lo[k], ball.at[k] - ball.pad), R.hi[k] = std::max(R.hi[k], ball.at[k] + ball.pad);
+      // the run's box (balls padded; a cell's vertices lie in its ball), made when first needed
+      auto& R = cell_runs[ch.region][a / run];
+      if (!R.valid) {
+        R.lo.fill(std::numeric_limits<double>::infinity());
+        R.hi.fill(-std::numeric_limits<double>::infinity());
+        R.flat = false;
+        for (std::size_t i = a; i < e; ++i) {
+          cell_ball<D> own;
+          const auto& ball = ball_of(ch.region, i, own);
+          if (ball.pad == cell_ball<D>::flat) {
+            R.flat = true;
+            continue;
           }
-          R.valid = true;
+          for (std::size_t k = 0; k < D; ++k)
+            R.lo[k] = std::min(R.lo[k], ball.at[k] - ball.pad), R.hi[k] = std::max(R.hi[k], ball.at[k] + ball.pad);
         }
-        look = R.flat || (!gone_at.empty() && gone_bins.any(R.lo, R.hi, [&](vertex_id y) {
-                 for (std::size_t k = 0; k < D; ++k)
-                   if (gone_at[y][k] < R.lo[k] || gone_at[y][k] > R.hi[k]) return false;
-                 return true;
-               })) || (p.size() > n0 && new_point_in(R.lo, R.hi));
-        if (!look) continue;
-      } else {
-      point<D> lo, hi;
-      lo.fill(std::numeric_limits<double>::infinity());
-      hi.fill(-std::numeric_limits<double>::infinity());
-      for (std::size_t i = a; i < e && !look; ++i) {
-        std::size_t marked = 0;
-        for (auto v : cells[ch.region][i]) marked += on_gone[v];
-        if (marked >= D) look = true;
-        if (p.size() == n0) continue;
-        cell_ball<D> own;
-        const auto& ball = ball_of(ch.region, i, own);
-        if (ball.pad == cell_ball<D>::flat) look = true;
-        for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], ball.at[k] - ball.pad), hi[k] = std::max(hi[k], ball.at[k] + ball.pad);
+        R.valid = true;
       }
-      if (!look && (p.size() == n0 || !new_point_in(lo, hi))) continue;
-      }
+      const bool look = R.flat || (!gone_at.empty() && gone_bins.any(R.lo, R.hi, [&](vertex_id y) {
+               for (std::size_t k = 0; k < D; ++k)
+                 if (gone_at[y][k] < R.lo[k] || gone_at[y][k] > R.hi[k]) return false;
+               return true;
+             })) || (p.size() > n0 && new_point_in(R.lo, R.hi));
+      if (!look) continue;
       for (std::size_t i = a; i < e; ++i) {
         cell_t<D> c = cells[ch.region][i];
         char& out = dead[ch.region][i];
@@ -1061,7 +1043,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         dr[i] = 0;
         if (balls) (*balls)[r][i] = cell_ball<D>{};  // unknown
         if (flags) (*flags)[r][i] = 1;               // not looked at yet
-        if (kept_runs) (*kept_runs)[r][i / cell_run].valid = false;
+        cell_runs[r][i / cell_run].valid = false;
       }
     if (holes) {  // every new cell is placed: close up over the dead ones left
       std::size_t w = 0;
@@ -1075,16 +1057,14 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       cs.resize(w);
       if (balls) (*balls)[r].resize(w);
       if (flags) (*flags)[r].resize(w);
-      if (kept_runs) (*kept_runs)[r].assign((w + cell_run - 1) / cell_run, run_box<D>{});  // cells moved
+      cell_runs[r].assign((w + cell_run - 1) / cell_run, run_box<D>{});  // cells moved
       return;
     }
     for (cell_t<D> c; next_new(c);) cs.push_back(c);
     if (balls) (*balls)[r].resize(cs.size());
     if (flags) (*flags)[r].resize(cs.size(), 1);
-    if (kept_runs) {
-      if (cs.size() > old_size && old_size % cell_run != 0) (*kept_runs)[r][old_size / cell_run].valid = false;
-      (*kept_runs)[r].resize((cs.size() + cell_run - 1) / cell_run);  // new runs: not valid yet
-    }
+    if (cs.size() > old_size && old_size % cell_run != 0) cell_runs[r][old_size / cell_run].valid = false;
+    cell_runs[r].resize((cs.size() + cell_run - 1) / cell_run);  // new runs: not valid yet
   }, [&](std::size_t r) { return static_cast<double>(cells[r].size()); });
   const std::size_t count = std::accumulate(added.begin(), added.end(), std::size_t{0});
   if (removed_count) *removed_count = removed;

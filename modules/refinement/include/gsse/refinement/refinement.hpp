@@ -126,7 +126,7 @@ struct cell_ball {
 };
 template <std::size_t D>
 using balls_by_region = std::vector<std::vector<cell_ball<D>>>;
-/// `runs` (optional, with `balls`): per run of `cell_run` consecutive cells, the box of their
+/// `runs` (optional): per run of `cell_run` consecutive cells, the box of their
 /// balls and whether one is flat, kept from round to round until a cell of the run changes: a
 /// round then reads a box per run, not every cell, to find the runs no new point and no vertex of
 /// a split face comes near.
