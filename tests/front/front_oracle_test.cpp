@@ -17,6 +17,8 @@
 #include "gsse/front/kernels.hpp"
 #include "gsse/geometry/predicates.hpp"
 
+#include "../support/crowded_points.hpp"
+
 using namespace gsse;
 using K = geometry::kernel;
 using tet = std::array<vertex_id, 4>;
@@ -360,4 +362,17 @@ BOOST_AUTO_TEST_CASE(facet_rewrap_is_the_full_wrap) {
     previous = full;
   }
   BOOST_TEST(reused > 4 * std::size_t(n * n));  // most triangles were kept, not searched for
+}
+
+// The gift wrap over the crowded points is CGAL's Delaunay tetrahedralisation (the positions of
+// points within a crowded cell follow its own grid's order; the result cannot depend on it).
+BOOST_AUTO_TEST_CASE(crowded_points_in_cube_match_cgal) {
+  std::mt19937_64 rng(11);
+  const auto p = testing::crowded_cube_points(5000, rng);
+  const auto grid = front::make_grid(p);
+  BOOST_TEST(grid.levels() > 1u);
+  const auto ours = canonical(front::wrap(p, grid, unit_cube_boundary(p), "crowded cube"));
+  const auto theirs = cgal_delaunay_3(p);
+  BOOST_TEST(ours.size() == theirs.size());
+  BOOST_TEST((ours == theirs));
 }

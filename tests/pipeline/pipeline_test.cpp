@@ -170,13 +170,13 @@ BOOST_AUTO_TEST_CASE(verifier_detects_a_broken_mesh) {
   for (const auto& s : d.segments())
     for (const auto& c : s.cell_data()) {
       const auto& P = d.points();
-      const double a = distance(P[c[1]], P[c[2]]), b = distance(P[c[0]], P[c[2]]), e = distance(P[c[0]], P[c[1]]);
-      for (auto [x, y, z] : {std::array{a, b, e}, std::array{b, e, a}, std::array{e, a, b}}) {
+      const double a = distance(P[c[1]], P[c[2]]), bb = distance(P[c[0]], P[c[2]]), e = distance(P[c[0]], P[c[1]]);
+      for (auto [x, y, z] : {std::array{a, bb, e}, std::array{bb, e, a}, std::array{e, a, bb}}) {
         const double deg = std::acos(std::clamp((y * y + z * z - x * x) / (2 * y * z), -1.0, 1.0)) * 180 / std::numbers::pi;
         lo = std::min(lo, deg), hi = std::max(hi, deg);
       }
-      const double sp = (a + b + e) / 2, area = std::sqrt(sp * (sp - a) * (sp - b) * (sp - e));
-      const double ratio = a * b * e / (4 * area) / std::min({a, b, e});
+      const double sp = (a + bb + e) / 2, area = std::sqrt(sp * (sp - a) * (sp - bb) * (sp - e));
+      const double ratio = a * bb * e / (4 * area) / std::min({a, bb, e});
       rmin = std::min(rmin, ratio), rmax = std::max(rmax, ratio);
     }
   BOOST_TEST(q.min_angle == lo, boost::test_tools::tolerance(1e-6));

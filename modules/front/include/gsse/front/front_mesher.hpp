@@ -7,10 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "gsse/front/point_grid.hpp"
+#include "gsse/geometry/point_grid.hpp"
 #include "gsse/geometry/point.hpp"
 
 namespace gsse::front {
+
+using geometry::point_grid;  // the candidate index (gsse/geometry/point_grid.hpp)
 
 struct wrap_stats;
 

@@ -26,10 +26,12 @@
 #include <vector>
 
 #include "gsse/front/face_table.hpp"
-#include "gsse/front/point_grid.hpp"
+#include "gsse/geometry/point_grid.hpp"
 #include "gsse/front/point_overlay.hpp"
 
 namespace gsse::front {
+
+using geometry::point_grid;  // the candidate index (gsse/geometry/point_grid.hpp)
 
 class front_error : public std::runtime_error {
  public:

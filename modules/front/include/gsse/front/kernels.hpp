@@ -25,9 +25,11 @@
 #include "gsse/geometry/circumcentre.hpp"
 #include "gsse/geometry/exact_ball.hpp"
 #include "gsse/geometry/predicates.hpp"
-#include "gsse/front/point_grid.hpp"
+#include "gsse/geometry/point_grid.hpp"
 
 namespace gsse::front {
+
+using geometry::point_grid;  // the candidate index (gsse/geometry/point_grid.hpp)
 
 namespace detail {
 inline constexpr double eps = std::numeric_limits<double>::epsilon();

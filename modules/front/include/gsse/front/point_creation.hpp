@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "gsse/front/point_grid.hpp"
+#include "gsse/geometry/point_grid.hpp"
 #include "gsse/geometry/point.hpp"
 
 namespace gsse::rules {
@@ -23,6 +23,8 @@ struct front_rule_set;
 }
 
 namespace gsse::front {
+
+using geometry::point_grid;  // the candidate index (gsse/geometry/point_grid.hpp)
 
 struct wrap_stats;
 

@@ -5,9 +5,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "gsse/front/point_grid.hpp"
+#include "gsse/geometry/point_grid.hpp"
 
 namespace gsse::front {
+
+using geometry::point_grid;  // the candidate index (gsse/geometry/point_grid.hpp)
 
 template <std::size_t G>
 class point_overlay {
