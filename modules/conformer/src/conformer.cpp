@@ -8,12 +8,15 @@
 #include <map>
 #include <numeric>
 #include <set>
+#include <span>
+#include <stdexcept>
 #include <tuple>
 
 #include "balls.hpp"
 #include "encroachment.hpp"
 #include "gsse/front/front_mesher.hpp"
 #include "gsse/geometry/hash_grid.hpp"
+#include "gsse/geometry/point_grid.hpp"
 #include "gsse/plc/facet_regions.hpp"
 #include "gsse/conformer/regions.hpp"
 #include "gsse/front/gift_wrap.hpp"
@@ -73,9 +76,19 @@ struct recent_points {
   bool empty = true;
   recent_points(const point<D>& origin, double cell) : grid(origin, cell) {}
   void add(vertex_id v, const point<D>& q) {
+    if (frozen) throw std::logic_error("recent_points: add after freeze");
     grid.insert(v, q);
+    ids.push_back(v);
+    at.push_back(q);
     for (std::size_t k = 0; k < D; ++k) lo[k] = empty ? q[k] : std::min(lo[k], q[k]), hi[k] = empty ? q[k] : std::max(hi[k], q[k]);
     empty = false;
+  }
+  /// No more points: searches go to a point grid over them (nested where they crowd, rows clipped
+  /// to the ball) instead of the hash grid, whose box scan reads every cell of a large ball's box,
+  /// or sorts every occupied cell when the box has more (the hammer's coarse subfacets).
+  void freeze() {
+    frozen = true;
+    fixed.build(std::span<const point<D>>(at), ids);
   }
   /// False if none lies in the box [a, b].
   bool near_box(const point<D>& a, const point<D>& b) const {
@@ -94,6 +107,21 @@ struct recent_points {
     }
     return d2 <= r * r;
   }
+  /// f(id) for (at least) the points within r of c; false from f stops, and visit_ball returns
+  /// false.
+  template <class F>
+  bool visit_ball(const point<D>& c, double r, F&& f) const {
+    if (frozen) return fixed.visit_ball(c, r, point<D>{}, 0.0, [&](vertex_id y, const point<D>&) { return f(y); });
+    point<D> a, b;
+    for (std::size_t k = 0; k < D; ++k) a[k] = c[k] - r, b[k] = c[k] + r;
+    return grid.visit(a, b, f);
+  }
+
+ private:
+  std::vector<vertex_id> ids;
+  std::vector<point<D>> at;
+  bool frozen = false;
+  geometry::point_grid<D> fixed;
 };
 
 /// Conformer state shared by 2D and 3D.
@@ -616,6 +644,7 @@ class state {
       const std::size_t pass_start = p.size();
       recent_points<D> recent(p[0], grid_h_);
       for (std::size_t v = upto; upto > 0 && v < p.size(); ++v) recent.add(static_cast<vertex_id>(v), p[v]);
+      recent.freeze();
       std::vector<char> encroached(edges_.size(), 0);
       for_each(execution::par(opt_.threads), ids, [&](std::uint32_t e) {
         std::vector<vertex_id> scratch;
@@ -665,9 +694,7 @@ class state {
     const auto& p = out_.points;
     const auto [c, r] = detail::diametral_bound(p[a], p[b]);
     if (!g.near(c, r)) return false;
-    point<D> lo, hi;
-    for (std::size_t k = 0; k < D; ++k) lo[k] = c[k] - r, hi[k] = c[k] + r;
-    return !g.grid.visit(lo, hi, [&](vertex_id y) {
+    return !g.visit_ball(c, r, [&](vertex_id y) {
       return squared_distance(c, p[y]) > r * r || geometry::in_diametral(p[a], p[b], p[y]) < 0;
     });
   }
@@ -1255,9 +1282,7 @@ class state3 : public state<3> {
   bool in_closed_ball(const recent_points<3>& g, const std::array<vertex_id, 3>& T, const point3& cc, double r) const {
     const auto& p = out_.points;
     if (!g.near(cc, r)) return false;
-    point3 lo, hi;
-    for (std::size_t k = 0; k < 3; ++k) lo[k] = cc[k] - r, hi[k] = cc[k] + r;
-    return !g.grid.visit(lo, hi, [&](vertex_id w) {
+    return !g.visit_ball(cc, r, [&](vertex_id w) {
       return squared_distance(cc, p[w]) > r * r || geometry::in_equatorial(p[T[0]], p[T[1]], p[T[2]], p[w]) < 0;
     });
   }
@@ -1283,6 +1308,7 @@ class state3 : public state<3> {
     // filling it would be serial work for nothing
     const bool known = std::any_of(facets_.begin(), facets_.end(), [](const facet_state& S) { return S.checked || !S.clean.empty(); });
     for (vertex_id v = static_cast<vertex_id>(checked_upto_); known && v < p.size(); ++v) recent.add(v, p[v]);
+    recent.freeze();
     // work in pieces of a facet, so that one large facet does not keep a thread busy alone
     constexpr std::size_t piece = 512;
     struct range {

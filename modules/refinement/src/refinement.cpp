@@ -18,6 +18,7 @@
 #include "gsse/geometry/circumcentre.hpp"
 #include "gsse/geometry/exact_ball.hpp"
 #include "gsse/geometry/hash_grid.hpp"
+#include "gsse/geometry/point_grid.hpp"
 #include "gsse/geometry/predicates.hpp"
 #include "gsse/sizing/box_tree.hpp"
 #include "gsse/traversal/for_each.hpp"
@@ -539,70 +540,31 @@ face_t<D> key_of(face_t<D> f) {
   return f;
 }
 
-/// The points [first, end) of `p` in a uniform grid (compressed rows), for "which of them lie near
-/// this box". Doubles select candidates; exact predicates decide.
+/// The points [first, end) of `p` in a point grid (nested where they crowd: new points gather
+/// where the refinement works), for "which of them lie near this box or ball". Doubles select
+/// candidates; exact predicates decide.
 template <std::size_t D>
 class point_bins {
  public:
-  point_bins(const std::vector<point<D>>& p, std::size_t first) : p_(p) {
-    lo_ = p.empty() ? point<D>{} : p[0];
-    point<D> hi = lo_;
-    for (const auto& q : p)
-      for (std::size_t k = 0; k < D; ++k) lo_[k] = std::min(lo_[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+  point_bins(const std::vector<point<D>>& p, std::size_t first) {
     const std::size_t m = p.size() > first ? p.size() - first : 0;
-    double span = 0;
-    for (std::size_t k = 0; k < D; ++k) span = std::max(span, hi[k] - lo_[k]);
-    span = std::max(span, 1e-300);
-    double vol = 1;
-    for (std::size_t k = 0; k < D; ++k) vol *= std::max(hi[k] - lo_[k], 1e-3 * span);
-    const double target = std::clamp(2.0 * static_cast<double>(m), 64.0, 4194304.0);
-    const double side = std::pow(vol / target, 1.0 / static_cast<double>(D));
-    std::size_t total = 1;
-    for (std::size_t k = 0; k < D; ++k) {
-      n_[k] = static_cast<long>(std::clamp(std::ceil((hi[k] - lo_[k]) / side), 1.0, 4096.0));
-      inv_[k] = static_cast<double>(n_[k]) / std::max(hi[k] - lo_[k], 1e-300);
-      total *= static_cast<std::size_t>(n_[k]);
-    }
-    start_.assign(total + 1, 0);
-    for (std::size_t v = first; v < p.size(); ++v) ++start_[index(p[v]) + 1];
-    for (std::size_t i = 0; i < total; ++i) start_[i + 1] += start_[i];
-    ids_.resize(m);
-    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
-    for (std::size_t v = first; v < p.size(); ++v) ids_[fill[index(p[v])]++] = static_cast<vertex_id>(v);
+    std::vector<vertex_id> ids(m);
+    std::iota(ids.begin(), ids.end(), static_cast<vertex_id>(first));
+    grid_.build(std::span<const point<D>>(p.data() + first, m), ids);
   }
   /// f(id) for the points in the grid cells meeting [lo, hi]; f returning true stops.
   template <class F>
   bool any(const point<D>& lo, const point<D>& hi, F&& f) const {
-    std::array<long, D> a, b;
-    for (std::size_t k = 0; k < D; ++k) a[k] = coord(lo[k], k), b[k] = coord(hi[k], k);
-    std::array<long, D> c = a;
-    for (;;) {
-      std::size_t i = 0;
-      for (std::size_t k = D; k-- > 0;) i = i * static_cast<std::size_t>(n_[k]) + static_cast<std::size_t>(c[k]);
-      for (std::uint32_t j = start_[i]; j < start_[i + 1]; ++j)
-        if (f(ids_[j])) return true;
-      std::size_t k = 0;
-      while (k < D && ++c[k] > b[k]) c[k] = a[k], ++k;
-      if (k == D) return false;
-    }
+    return !grid_.visit_box(lo, hi, [&](vertex_id y, const point<D>&) { return !f(y); });
+  }
+  /// The same for the cells meeting the ball (c, r).
+  template <class F>
+  bool any_in_ball(const point<D>& c, double r, F&& f) const {
+    return !grid_.visit_ball(c, r, point<D>{}, 0.0, [&](vertex_id y, const point<D>&) { return !f(y); });
   }
 
  private:
-  long coord(double x, std::size_t k) const {
-    const double t = std::floor((x - lo_[k]) * inv_[k]);
-    return static_cast<long>(std::clamp(t, 0.0, static_cast<double>(n_[k] - 1)));
-  }
-  std::size_t index(const point<D>& q) const {
-    std::size_t i = 0;
-    for (std::size_t k = D; k-- > 0;) i = i * static_cast<std::size_t>(n_[k]) + static_cast<std::size_t>(coord(q[k], k));
-    return i;
-  }
-  const std::vector<point<D>>& p_;
-  point<D> lo_;
-  std::array<double, D> inv_{};
-  std::array<long, D> n_{};
-  std::vector<std::uint32_t> start_;
-  std::vector<vertex_id> ids_;
+  geometry::point_grid<D> grid_;
 };
 
 /// Does the perturbed circumball of the positive cell c hold y? (the front mesher's criterion)
@@ -816,10 +778,8 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         }
         const point<D>& at = ball.at;
         const double pad = ball.pad;
-        point<D> blo, bhi;
-        for (std::size_t k = 0; k < D; ++k) blo[k] = at[k] - pad, bhi[k] = at[k] + pad;
         bool oriented = false;
-        out = bins.any(blo, bhi, [&](vertex_id y) {
+        out = bins.any_in_ball(at, pad, [&](vertex_id y) {
           if (squared_distance(p[y], at) > pad * pad) return false;
           if (!oriented) {
             int o;
