@@ -270,13 +270,19 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   if constexpr (D == 3) {
     if (acute_guard > 0) {
       auto on_edge = [&](vertex_id v) { return v < b.plc_points || b.homes[v].kind == conformer::home::edge; };
+      // whether uv can lie on an input edge: two points of one edge, or an input vertex and a point
+      // of any edge, or two input vertices. A face side between points of two different edges
+      // crosses a facet's inside, and the faces on it are of that one facet, opposite: never thin
+      auto along = [&](vertex_id u, vertex_id v) {
+        return u < b.plc_points || v < b.plc_points || b.homes[u].id == b.homes[v].id;
+      };
       // (subsegment, third vertex) of every face on two edge points, grouped by subsegment (a
       // sorted list: a hash map of lists per round cost more than the rest of the plan)
       std::vector<std::pair<std::uint64_t, vertex_id>> around;
       for (const auto& F : b.faces)
         for (int i = 0; i < 3; ++i) {
           const vertex_id u = F[static_cast<std::size_t>(i)], v = F[static_cast<std::size_t>((i + 1) % 3)], w = F[static_cast<std::size_t>((i + 2) % 3)];
-          if (!on_edge(u) || !on_edge(v)) continue;
+          if (!on_edge(u) || !on_edge(v) || !along(u, v)) continue;
           around.push_back({(std::uint64_t{std::min(u, v)} << 32) | std::max(u, v), w});
         }
       std::sort(around.begin(), around.end());
@@ -343,10 +349,23 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
     return no_vertex;
   };
   std::vector<std::vector<vertex_id>> excepted(chunks.size());  // per chunk: where each excepted element is
+  // the guards' boxes in a tree: the excepted elements are looked at again every round, and a CAD
+  // part has hundreds of acute vertices
+  std::vector<sizing::aabb<D>> guard_boxes;
+  for (const auto& g : guarded) {
+    auto box = sizing::aabb<D>::empty();
+    box.add(g.at);
+    for (std::size_t k = 0; k < D; ++k) box.lo[k] -= g.r, box.hi[k] += g.r;
+    guard_boxes.push_back(box);
+  }
+  const sizing::box_tree<D> guard_tree(std::move(guard_boxes), std::vector<double>(guarded.size(), 0.0));
   auto near_acute = [&](const point<D>& x) -> std::size_t {  // the first guard holding x, or none
-    for (std::size_t g = 0; g < guarded.size(); ++g)
-      if (squared_distance(x, guarded[g].at) < guarded[g].r * guarded[g].r) return g;
-    return guarded.size();
+    std::size_t first = guarded.size();
+    guard_tree.visit([&](const sizing::aabb<D>& box) { return box.contains(x); }, [&](std::uint32_t g) {
+      if (g < first && squared_distance(x, guarded[g].at) < guarded[g].r * guarded[g].r) first = g;
+      return true;
+    });
+    return first;
   };
   const double cos_sliver = std::cos(sliver * std::numbers::pi / 180), cos_flat = std::cos((180 - 2 * sliver) * std::numbers::pi / 180);
   for_each(execution::par(threads), ids, [&](std::size_t k) {
