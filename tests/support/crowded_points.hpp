@@ -9,22 +9,32 @@
 
 namespace gsse::testing {
 
-/// The unit cube's corners and n random points crowded towards the corner 0 as a conforming
+/// The unit box's 2^D corners and n random points crowded towards the corner 0 as a conforming
 /// mesh grades towards a small input angle: at distance 2^-k (k uniform in 0..20) in a random
-/// direction of the positive octant.
-inline std::vector<point3> crowded_cube_points(std::size_t n, std::mt19937_64& rng) {
+/// direction of the positive orthant.
+template <std::size_t D>
+std::vector<point<D>> crowded_points(std::size_t n, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::uniform_int_distribution<int> shell(0, 20);
-  std::vector<point3> p;
-  for (int i = 0; i < 8; ++i) p.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
-  while (p.size() < n + 8) {
-    const point3 d{u(rng), u(rng), u(rng)};
+  std::vector<point<D>> p;
+  for (std::size_t i = 0; i < (std::size_t{1} << D); ++i) {
+    point<D> c;
+    for (std::size_t k = 0; k < D; ++k) c[k] = double((i >> k) & 1);
+    p.push_back(c);
+  }
+  while (p.size() < n + (std::size_t{1} << D)) {
+    point<D> d;
+    for (auto& x : d) x = u(rng);
     const double l = std::sqrt(dot(d, d));
     if (!(l > 1e-3 && l <= 1)) continue;
     const double s = std::ldexp(1.0, -shell(rng)) * u(rng) / l;
-    p.push_back({s * d[0], s * d[1], s * d[2]});
+    for (auto& x : d) x *= s;
+    p.push_back(d);
   }
   return p;
 }
+
+/// The unit cube's corners (ids 0-7, x + 2y + 4z) and n crowded points (crowded_points<3>).
+inline std::vector<point3> crowded_cube_points(std::size_t n, std::mt19937_64& rng) { return crowded_points<3>(n, rng); }
 
 }  // namespace gsse::testing
