@@ -679,7 +679,9 @@ report check(const domain<D>& d, const plc<D>& input, const options& o) {
         long double R2 = 0;
         for (std::size_t k = 0; k < D; ++k) R2 += static_cast<long double>(x[0][k] - centre[k]) * (x[0][k] - centre[k]);
         vertex_id inside = no_cell;
-        grid.visit_ball(centre, radius, no_plane, 0.0, [&](vertex_id y, const point<D>& q) {
+        // cells within the padded radius: the grid pads its cells by 1e-10 of its extent only, too
+        // little against rounding in (r + pad)^2 for a ball much larger than the mesh
+        grid.visit_ball(centre, radius * (1 + 1e-9), no_plane, 0.0, [&](vertex_id y, const point<D>& q) {
           if (std::find(cv.begin(), cv.end(), y) != cv.end()) return true;
           if (squared_distance(q, centre) > r2) return true;  // outside the enclosing ball: outside the sphere
           int s;
