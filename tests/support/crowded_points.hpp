@@ -10,8 +10,8 @@
 namespace gsse::testing {
 
 /// The unit box's 2^D corners and n random points crowded towards the corner 0 as a conforming
-/// mesh grades towards a small input angle: at distance 2^-k (k uniform in 0..20) in a random
-/// direction of the positive orthant.
+/// mesh grades towards a small input angle: at a distance uniform in (0, 2^-k] (k uniform in
+/// 0..20) in a random direction of the positive orthant.
 template <std::size_t D>
 std::vector<point<D>> crowded_points(std::size_t n, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);

@@ -74,12 +74,17 @@ struct recent_points {
   hash_grid<D> grid;
   point<D> lo{}, hi{};
   bool empty = true;
-  recent_points(const point<D>& origin, double cell) : grid(origin, cell) {}
+  /// `to_freeze`: all points come before any search, and freeze() comes between (a point grid is
+  /// built then; the hash grid stays empty). Otherwise the hash grid takes points as they come.
+  recent_points(const point<D>& origin, double cell, bool freeze_later = false) : grid(origin, cell), to_freeze(freeze_later) {}
   void add(vertex_id v, const point<D>& q) {
     if (frozen) throw std::logic_error("recent_points: add after freeze");
-    grid.insert(v, q);
-    ids.push_back(v);
-    at.push_back(q);
+    if (to_freeze) {
+      ids.push_back(v);
+      at.push_back(q);
+    } else {
+      grid.insert(v, q);
+    }
     for (std::size_t k = 0; k < D; ++k) lo[k] = empty ? q[k] : std::min(lo[k], q[k]), hi[k] = empty ? q[k] : std::max(hi[k], q[k]);
     empty = false;
   }
@@ -87,6 +92,7 @@ struct recent_points {
   /// to the ball) instead of the hash grid, whose box scan reads every cell of a large ball's box,
   /// or sorts every occupied cell when the box has more (the hammer's coarse subfacets).
   void freeze() {
+    if (!to_freeze) throw std::logic_error("recent_points: freeze of a growing set");
     frozen = true;
     fixed.build(std::span<const point<D>>(at), ids);
   }
@@ -112,15 +118,16 @@ struct recent_points {
   template <class F>
   bool visit_ball(const point<D>& c, double r, F&& f) const {
     if (frozen) return fixed.visit_ball(c, r, point<D>{}, 0.0, [&](vertex_id y, const point<D>&) { return f(y); });
+    if (to_freeze) throw std::logic_error("recent_points: search before freeze");
     point<D> a, b;
     for (std::size_t k = 0; k < D; ++k) a[k] = c[k] - r, b[k] = c[k] + r;
     return grid.visit(a, b, f);
   }
 
  private:
+  bool to_freeze, frozen = false;
   std::vector<vertex_id> ids;
   std::vector<point<D>> at;
-  bool frozen = false;
   geometry::point_grid<D> fixed;
 };
 
@@ -642,7 +649,7 @@ class state {
       // since can encroach it (closed ball: a new tie counts)
       const auto& p = out_.points;
       const std::size_t pass_start = p.size();
-      recent_points<D> recent(p[0], grid_h_);
+      recent_points<D> recent(p[0], grid_h_, true);
       for (std::size_t v = upto; upto > 0 && v < p.size(); ++v) recent.add(static_cast<vertex_id>(v), p[v]);
       recent.freeze();
       std::vector<char> encroached(edges_.size(), 0);
@@ -1303,7 +1310,7 @@ class state3 : public state<3> {
   /// wholly clean then: a split changes its vertex set.
   std::vector<split_candidate> encroachers() {
     const auto& p = out_.points;
-    recent_points<3> recent(p[0], grid_h_);
+    recent_points<3> recent(p[0], grid_h_, true);
     // read only for subfacets known clean; before any is (the first check: every point is recent)
     // filling it would be serial work for nothing
     const bool known = std::any_of(facets_.begin(), facets_.end(), [](const facet_state& S) { return S.checked || !S.clean.empty(); });
