@@ -117,7 +117,7 @@ struct recent_points {
   /// false.
   template <class F>
   bool visit_ball(const point<D>& c, double r, F&& f) const {
-    if (frozen) return fixed.visit_ball(c, r, point<D>{}, 0.0, [&](vertex_id y, const point<D>&) { return f(y); });
+    if (frozen) return fixed.visit_ball(c, r, [&](vertex_id y, const point<D>&) { return f(y); });
     if (to_freeze) throw std::logic_error("recent_points: search before freeze");
     point<D> a, b;
     for (std::size_t k = 0; k < D; ++k) a[k] = c[k] - r, b[k] = c[k] + r;

@@ -579,7 +579,7 @@ class point_bins {
   /// The same for the cells meeting the ball (c, r).
   template <class F>
   bool any_in_ball(const point<D>& c, double r, F&& f) const {
-    return !grid_.visit_ball(c, r, point<D>{}, 0.0, [&](vertex_id y, const point<D>&) { return !f(y); });
+    return !grid_.visit_ball(c, r, [&](vertex_id y, const point<D>&) { return !f(y); });
   }
 
  private:

@@ -664,7 +664,6 @@ report check(const domain<D>& d, const plc<D>& input, const options& o) {
   if (o.delaunay && nc) {
     // nested where points crowd (a uniform grid read 12 s on a CAD hammer's 69k points)
     const geometry::point_grid<D> grid{std::span<const point<D>>(p)};
-    const point<D> no_plane{};
     std::vector<delaunay_result> res((nc + chunk - 1) / chunk);
     in_tasks(threads, nc, [&](std::size_t b, std::size_t e, std::size_t t) {
       auto& out = res[t];
@@ -681,7 +680,7 @@ report check(const domain<D>& d, const plc<D>& input, const options& o) {
         vertex_id inside = no_cell;
         // cells within the padded radius: the grid pads its cells by 1e-10 of its extent only, too
         // little against rounding in (r + pad)^2 for a ball much larger than the mesh
-        grid.visit_ball(centre, radius * (1 + 1e-9), no_plane, 0.0, [&](vertex_id y, const point<D>& q) {
+        grid.visit_ball(centre, radius * (1 + 1e-9), [&](vertex_id y, const point<D>& q) {
           if (std::find(cv.begin(), cv.end(), y) != cv.end()) return true;
           if (squared_distance(q, centre) > r2) return true;  // outside the enclosing ball: outside the sphere
           int s;

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "gsse/topology/simplex.hpp"
@@ -116,6 +117,11 @@ class point_grid {
   template <bool Local = false, class F>
   bool visit_ball(const coord& c, double r, const coord& n, double d, F&& f) const {
     return ball_ranges(levels_[0], c, r, n, d, [&](std::uint32_t b, std::uint32_t e) { return visit_range<Local>(b, e, f); });
+  }
+  /// visit_ball without a half-space: every point of the cells meeting the ball (c, r).
+  template <bool Local = false, class F>
+  bool visit_ball(const coord& c, double r, F&& f) const {
+    return visit_ball<Local>(c, r, coord{}, 0.0, std::forward<F>(f));
   }
   std::size_t cell_count() const { return levels_[0].start.size() - 1; }
   /// Number of points in the finest cells overlapping [lo, hi]: at least the points in the box.
