@@ -130,7 +130,7 @@ using balls_by_region = std::vector<std::vector<cell_ball<D>>>;
 /// balls and whether one is flat, kept from round to round until a cell of the run changes: a
 /// round then reads a box per run, not every cell, to find the runs no new point and no vertex of
 /// a split face comes near.
-inline constexpr std::size_t cell_run = 256;
+inline constexpr std::size_t cell_run = 64;
 template <std::size_t D>
 struct run_box {
   point<D> lo{}, hi{};
