@@ -729,6 +729,42 @@ class state {
 };
 
 // ------------------------------------------------------------------------------------------ 3D
+/// A set of triangles by their sorted corners (open addressing, at most half full): whether a
+/// subfacet was clean at the last check is asked once per subfacet of every facet triangulated
+/// again, and bisection in a sorted list was a twentieth of the rotated trench's run.
+class corner_set {
+ public:
+  using key = std::array<vertex_id, 3>;
+  corner_set() = default;
+  explicit corner_set(const std::vector<key>& keys) {
+    if (keys.empty()) return;
+    std::size_t size = 16;
+    while (size < 2 * keys.size()) size *= 2;
+    slots_.assign(size, key{no_vertex, no_vertex, no_vertex});
+    for (const key& k : keys) {
+      std::size_t h = slot(k);
+      while (slots_[h][0] != no_vertex && slots_[h] != k) h = (h + 1) & (slots_.size() - 1);
+      slots_[h] = k;
+    }
+  }
+  bool empty() const { return slots_.empty(); }
+  bool contains(const key& k) const {
+    if (slots_.empty()) return false;
+    for (std::size_t h = slot(k);; h = (h + 1) & (slots_.size() - 1)) {
+      if (slots_[h] == k) return true;
+      if (slots_[h][0] == no_vertex) return false;
+    }
+  }
+
+ private:
+  std::size_t slot(const key& k) const {
+    const std::uint64_t x = (std::uint64_t{k[0]} * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t{k[1]} * 0xC2B2AE3D27D4EB4Full) ^
+                            (std::uint64_t{k[2]} * 0x165667B19E3779F9ull);
+    return static_cast<std::size_t>(x >> 20) & (slots_.size() - 1);
+  }
+  std::vector<key> slots_;
+};
+
 struct facet_state {
   int axis = 2;
   std::uint32_t source = 0;                                        // input facet naming it (first member)
@@ -766,7 +802,7 @@ struct facet_state {
     bool quiet;
   };
   std::vector<piece_summary> pieces;
-  std::vector<std::array<vertex_id, 3>> clean;
+  corner_set clean;
 };
 
 class state3 : public state<3> {
@@ -1033,14 +1069,14 @@ class state3 : public state<3> {
     auto& S = facets_[f];
     // triangulated again before a check: the keys known clean at the last check stay valid
     if (S.checked) {
-      S.clean.clear();
+      std::vector<corner_set::key> keys;
       for (std::size_t t = 0; t < S.triangles.size(); ++t)
         if (S.was_clean[t]) {
           auto key = S.triangles[t];
           std::sort(key.begin(), key.end());
-          S.clean.push_back(key);
+          keys.push_back(key);
         }
-      std::sort(S.clean.begin(), S.clean.end());
+      S.clean = corner_set(keys);
     }
     S.checked = false;
     // the last triangulation, whose triangles the wrap keeps where no point added since disturbs
@@ -1350,7 +1386,7 @@ class state3 : public state<3> {
         if (!S.checked) std::sort(key.begin(), key.end());
         // clean at the last check: only a point inserted since can encroach it
         vertex_id y = no_vertex;
-        const bool known_clean = S.checked || std::binary_search(S.clean.begin(), S.clean.end(), key);
+        const bool known_clean = S.checked || S.clean.contains(key);
         if (!known_clean || in_closed_ball(recent, T, cc, r)) y = facet_encroacher(T[0], T[1], T[2], cc, r, ties);
         // too large: circumradius above that of the facet lattice's equilateral triangle
         // (size / sqrt 3), not merely by rounding. An edge test ("longer than the size") cut the
@@ -1474,29 +1510,34 @@ class state3 : public state<3> {
       if (!all)
         std::set_difference(S.wrapped.begin(), S.wrapped.end(), S.flat_checked.begin(), S.flat_checked.end(),
                             std::back_inserter(added));
-      auto among = [](const std::vector<vertex_id>& set, const std::array<vertex_id, 3>& T) {
-        return std::binary_search(set.begin(), set.end(), T[0]) || std::binary_search(set.begin(), set.end(), T[1]) ||
-               std::binary_search(set.begin(), set.end(), T[2]);
+      // per point, this thread's marks (bit 1: added, bit 2: a new triangle's vertex), cleared
+      // after use: a lookup per corner instead of a bisection
+      thread_local std::vector<std::uint8_t> mark;
+      if (mark.size() < out_.points.size()) mark.resize(out_.points.size(), 0);
+      auto among = [&](std::uint8_t bit, const std::array<vertex_id, 3>& T) {
+        return ((mark[T[0]] | mark[T[1]] | mark[T[2]]) & bit) != 0;
       };
       std::vector<char> fresh_tri;  // per triangle: new since the last check
       std::vector<vertex_id> near;  // the new triangles' vertices
       if (!all) {
+        for (vertex_id v : added) mark[v] |= 1;
         fresh_tri.resize(S.triangles.size());
         for (std::uint32_t t = 0; t < S.triangles.size(); ++t)
-          if ((fresh_tri[t] = among(added, S.triangles[t])))
+          if ((fresh_tri[t] = among(1, S.triangles[t])))
             near.insert(near.end(), S.triangles[t].begin(), S.triangles[t].end());
-        std::sort(near.begin(), near.end());
-        near.erase(std::unique(near.begin(), near.end()), near.end());
+        for (vertex_id v : near) mark[v] |= 2;
       }
       // each interior edge once: (sorted edge, triangle, apex)
       std::vector<std::tuple<std::uint64_t, std::uint32_t, vertex_id>> half;
       for (std::uint32_t t = 0; t < S.triangles.size(); ++t) {
-        if (!all && !fresh_tri[t] && !among(near, S.triangles[t])) continue;
+        if (!all && !fresh_tri[t] && !among(2, S.triangles[t])) continue;
         for (std::size_t k = 0; k < 3; ++k) {
           const vertex_id u = S.triangles[t][(k + 1) % 3], v = S.triangles[t][(k + 2) % 3];
           half.push_back({(std::uint64_t{std::min(u, v)} << 32) | std::max(u, v), t, S.triangles[t][k]});
         }
       }
+      for (vertex_id v : added) mark[v] = 0;
+      for (vertex_id v : near) mark[v] = 0;
       std::sort(half.begin(), half.end());
       std::vector<split_candidate> mine;
       std::vector<std::array<vertex_id, 4>> fresh;
@@ -1942,8 +1983,7 @@ class state3 : public state<3> {
     for (auto& S : facets_) {
       auto it = had.find(S.source);
       if (it == had.end() || S.checked) continue;
-      S.clean = std::move(it->second);
-      std::sort(S.clean.begin(), S.clean.end());
+      S.clean = corner_set(it->second);
     }
     checked_upto_ = prev.points.size();
     return rounds(std::move(wanted), keep);
