@@ -16,6 +16,7 @@
 #include "encroachment.hpp"
 #include "gsse/front/front_mesher.hpp"
 #include "gsse/geometry/hash_grid.hpp"
+#include "gsse/container/key_set.hpp"
 #include "gsse/geometry/point_grid.hpp"
 #include "gsse/plc/facet_regions.hpp"
 #include "gsse/conformer/regions.hpp"
@@ -729,42 +730,6 @@ class state {
 };
 
 // ------------------------------------------------------------------------------------------ 3D
-/// A set of triangles by their sorted corners (open addressing, at most half full): whether a
-/// subfacet was clean at the last check is asked once per subfacet of every facet triangulated
-/// again, and bisection in a sorted list was a twentieth of the rotated trench's run.
-class corner_set {
- public:
-  using key = std::array<vertex_id, 3>;
-  corner_set() = default;
-  explicit corner_set(const std::vector<key>& keys) {
-    if (keys.empty()) return;
-    std::size_t size = 16;
-    while (size < 2 * keys.size()) size *= 2;
-    slots_.assign(size, key{no_vertex, no_vertex, no_vertex});
-    for (const key& k : keys) {
-      std::size_t h = slot(k);
-      while (slots_[h][0] != no_vertex && slots_[h] != k) h = (h + 1) & (slots_.size() - 1);
-      slots_[h] = k;
-    }
-  }
-  bool empty() const { return slots_.empty(); }
-  bool contains(const key& k) const {
-    if (slots_.empty()) return false;
-    for (std::size_t h = slot(k);; h = (h + 1) & (slots_.size() - 1)) {
-      if (slots_[h] == k) return true;
-      if (slots_[h][0] == no_vertex) return false;
-    }
-  }
-
- private:
-  std::size_t slot(const key& k) const {
-    const std::uint64_t x = (std::uint64_t{k[0]} * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t{k[1]} * 0xC2B2AE3D27D4EB4Full) ^
-                            (std::uint64_t{k[2]} * 0x165667B19E3779F9ull);
-    return static_cast<std::size_t>(x >> 20) & (slots_.size() - 1);
-  }
-  std::vector<key> slots_;
-};
-
 struct facet_state {
   int axis = 2;
   std::uint32_t source = 0;                                        // input facet naming it (first member)
@@ -802,7 +767,7 @@ struct facet_state {
     bool quiet;
   };
   std::vector<piece_summary> pieces;
-  corner_set clean;
+  key_set<3> clean;
 };
 
 class state3 : public state<3> {
@@ -1069,14 +1034,14 @@ class state3 : public state<3> {
     auto& S = facets_[f];
     // triangulated again before a check: the keys known clean at the last check stay valid
     if (S.checked) {
-      std::vector<corner_set::key> keys;
+      std::vector<key_set<3>::key> keys;
       for (std::size_t t = 0; t < S.triangles.size(); ++t)
         if (S.was_clean[t]) {
           auto key = S.triangles[t];
           std::sort(key.begin(), key.end());
           keys.push_back(key);
         }
-      S.clean = corner_set(keys);
+      S.clean = key_set<3>(keys);
     }
     S.checked = false;
     // the last triangulation, whose triangles the wrap keeps where no point added since disturbs
@@ -1983,7 +1948,7 @@ class state3 : public state<3> {
     for (auto& S : facets_) {
       auto it = had.find(S.source);
       if (it == had.end() || S.checked) continue;
-      S.clean = corner_set(it->second);
+      S.clean = key_set<3>(it->second);
     }
     checked_upto_ = prev.points.size();
     return rounds(std::move(wanted), keep);

@@ -13,6 +13,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "gsse/container/key_set.hpp"
 #include "gsse/container/union_find.hpp"
 #include "gsse/front/front_mesher.hpp"
 #include "gsse/geometry/circumcentre.hpp"
@@ -683,12 +684,11 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     old_keys.reserve(e0 - a0), new_keys.reserve(e1 - a1);
     for (std::size_t f = a0; f < e0; ++f) old_keys.push_back(key_of<D>(b0.faces[f]));
     for (std::size_t f = a1; f < e1; ++f) new_keys.push_back(key_of<D>(b1.faces[f]));
-    std::sort(old_keys.begin(), old_keys.end());
-    std::sort(new_keys.begin(), new_keys.end());
+    const key_set<D> old_set(old_keys), new_set(new_keys);
     for (std::size_t f = a0; f < e0; ++f)
-      if (!std::binary_search(new_keys.begin(), new_keys.end(), key_of<D>(b0.faces[f]))) gone_in[i].push_back(f);
+      if (!new_set.contains(old_keys[f - a0])) gone_in[i].push_back(f);
     for (std::size_t f = a1; f < e1; ++f)
-      if (!std::binary_search(old_keys.begin(), old_keys.end(), key_of<D>(b1.faces[f]))) came_in[i].push_back(f);
+      if (!old_set.contains(new_keys[f - a1])) came_in[i].push_back(f);
   }, [&](std::size_t i) { return static_cast<double>(differ[i].e0 - differ[i].a0 + differ[i].e1 - differ[i].a1); });
   std::vector<std::size_t> gone_faces, came_faces;
   for (std::size_t i = 0; i < differ.size(); ++i) {
