@@ -1065,10 +1065,10 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     std::vector<std::uint32_t> free_places;  // indices into slots, in code order
     for (std::size_t d = 0; d < slots.size(); ++d)
       if (!taken[d]) free_places.push_back(static_cast<std::uint32_t>(d));
+    std::size_t left = free_places.size();  // dead places no new cell takes: holes, if any
     {
       std::size_t at = 0;
       std::vector<char> spent(free_places.size(), 0);
-      std::size_t left = free_places.size();
       for (std::size_t a = 0; a < fresh.size() && left > 0; ++a) {
         if (place[fresh[a].second] >= 0) continue;
         while (at < free_places.size() && (spent[at] || slots[free_places[at]].first < fresh[a].first)) ++at;
@@ -1089,9 +1089,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       if (flags) (*flags)[r][i] = 1;               // not looked at yet
       cell_runs[r][i / cell_run].valid = false;
     }
-    bool holes = false;
-    for (std::size_t i = 0; i < old_size && !holes; ++i) holes = dr[i] != 0;
-    if (holes) {  // every new cell is placed: close up over the dead ones left
+    if (left > 0) {  // every new cell is placed: close up over the dead ones left
       std::size_t w = 0;
       for (std::size_t i = 0; i < old_size; ++i)
         if (!dr[i]) {
