@@ -307,18 +307,11 @@ BOOST_AUTO_TEST_CASE(missing_candidate_is_an_error) {
   });
 }
 
-// The conformer wraps a facet again after each round of splits, keeping the triangles no new
-// point disturbs (facet_rewrap). That must give exactly the full wrap: the same triangles in the
-// same order (the conformer's split order follows it). A facet of lattice points (cocircular
-// everywhere: every choice is a tie the perturbation breaks) gains lattice midpoints, boundary
-// splits and random points over several rounds.
-BOOST_AUTO_TEST_CASE(facet_rewrap_is_the_full_wrap) {
-  const int n = 8;
-  const double z = 0.375;
-  std::vector<point3> p;
-  std::vector<vertex_id> ring;  // boundary, counter-clockwise seen from +z
-  auto add = [&](double x, double y) {
-    p.push_back({x, y, z});
+// The unit square at z = 0.375 as an n x n lattice facet: its boundary points in `ring`
+// (counter-clockwise seen from +z), then the inner lattice points; returns the adder of points.
+auto lattice_facet(int n, std::vector<point3>& p, std::vector<vertex_id>& ring) {
+  auto add = [&p](double x, double y) {
+    p.push_back({x, y, 0.375});
     return vertex_id(p.size() - 1);
   };
   for (int i = 0; i < n; ++i) ring.push_back(add(double(i) / n, 0));
@@ -327,6 +320,19 @@ BOOST_AUTO_TEST_CASE(facet_rewrap_is_the_full_wrap) {
   for (int i = n; i > 0; --i) ring.push_back(add(0, double(i) / n));
   for (int y = 1; y < n; ++y)
     for (int x = 1; x < n; ++x) add(double(x) / n, double(y) / n);
+  return add;
+}
+
+// The conformer wraps a facet again after each round of splits, keeping the triangles no new
+// point disturbs (facet_rewrap). That must give exactly the full wrap: the same triangles in the
+// same order (the conformer's split order follows it). A facet of lattice points (cocircular
+// everywhere: every choice is a tie the perturbation breaks) gains lattice midpoints, boundary
+// splits and random points over several rounds.
+BOOST_AUTO_TEST_CASE(facet_rewrap_is_the_full_wrap) {
+  const int n = 8;
+  std::vector<point3> p;
+  std::vector<vertex_id> ring;  // boundary, counter-clockwise seen from +z
+  const auto add = lattice_facet(n, p, ring);
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(0.02, 0.98);
   std::vector<tri> previous;
@@ -362,6 +368,67 @@ BOOST_AUTO_TEST_CASE(facet_rewrap_is_the_full_wrap) {
     previous = full;
   }
   BOOST_TEST(reused > 4 * std::size_t(n * n));  // most triangles were kept, not searched for
+}
+
+// The conformer's local re-wrap (front::rewrap_facet_local, rewrap_frame_local) wraps only the
+// cavity that added points and split boundary edges make. It must give the triangle set of a full
+// wrap, keep every surviving triangle in its place, and actually be local (a value, not the
+// fallback) when the change is small. A 16 x 16 lattice facet (ties everywhere) gains a boundary
+// split, a lattice midpoint and a few random points per round; both kernels: the projected
+// axis-aligned facet and the frame of a slanted one (its uv coordinates here).
+BOOST_AUTO_TEST_CASE(local_rewrap_is_the_full_wrap) {
+  for (bool frame : {false, true}) {
+    const int n = 16;
+    std::vector<point3> p;
+    std::vector<vertex_id> ring;
+    const auto add = lattice_facet(n, p, ring);
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(0.02, 0.98);
+    std::vector<tri> previous;
+    std::vector<std::array<vertex_id, 2>> old_boundary;
+    std::size_t local = 0;
+    for (int round = 0; round < 8; ++round) {
+      std::vector<vertex_id> added;
+      const std::size_t first = p.size();
+      if (round > 0) {
+        const auto e = static_cast<std::size_t>(7 * round) % ring.size();
+        const point3 a = p[ring[e]], b = p[ring[(e + 1) % ring.size()]];
+        ring.insert(ring.begin() + static_cast<long>(e) + 1, add(0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])));
+        add((2.0 * round + 1) / (2 * n), 0.5 + 1.0 / (2 * n));
+        for (int k = 0; k < round; ++k) add(u(rng), u(rng));
+        for (std::size_t v = first; v < p.size(); ++v) added.push_back(vertex_id(v));
+      }
+      std::vector<vertex_id> all(p.size());
+      std::iota(all.begin(), all.end(), vertex_id{0});
+      std::vector<point2> uv;
+      for (const auto& q : p) uv.push_back({q[0], q[1]});
+      std::vector<std::array<vertex_id, 2>> boundary;
+      for (std::size_t i = 0; i < ring.size(); ++i) boundary.push_back({ring[i], ring[(i + 1) % ring.size()]});
+      const auto grid = front::make_grid(std::span<const point3>(p), 2, all);
+      const auto full = frame ? front::wrap_frame(all, uv, boundary, "facet") : front::wrap_facet(p, 2, grid, boundary, "facet", nullptr, 0, true);
+      if (round > 0) {
+        const front::facet_change change{previous, added, old_boundary};
+        const auto part = frame ? front::rewrap_frame_local(all, uv, boundary, change, "facet")
+                                : front::rewrap_facet_local(p, 2, boundary, change, "facet");
+        BOOST_TEST_REQUIRE(part.has_value(), (frame ? "frame" : "projected") << " round " << round << ": fell back to the whole wrap");
+        BOOST_TEST_REQUIRE((canonical(*part) == canonical(full)), (frame ? "frame" : "projected") << " round " << round);
+        const auto now = canonical(full);
+        std::size_t kept = 0;
+        for (std::size_t t = 0; t < previous.size(); ++t) {
+          auto c = previous[t];
+          std::sort(c.begin(), c.end());
+          if (!now.count(c)) continue;
+          ++kept;
+          BOOST_TEST((t < part->size() && (*part)[t] == previous[t]), "a kept triangle moved, round " << round);
+        }
+        BOOST_TEST(kept > previous.size() / 2);
+        ++local;
+      }
+      previous = full;
+      old_boundary = boundary;
+    }
+    BOOST_TEST(local == 7u);
+  }
 }
 
 // The gift wrap over the crowded points is CGAL's Delaunay tetrahedralisation (the positions of

@@ -749,6 +749,7 @@ struct facet_state {
     std::vector<std::uint32_t> start, items;
   } cells;
   std::vector<vertex_id> wrapped;                                  // sorted vertices when triangulated
+  std::vector<std::array<vertex_id, 2>> wrapped_boundary;          // the boundary edges then
   std::size_t boundary_size = 0;                                   // chain vertices when triangulated
   std::array<bool, 3> constant{};                                  // coordinate shared by all corners
   // a slanted facet's plane (unit normal through the corners' centroid) and an orthonormal frame
@@ -760,6 +761,7 @@ struct facet_state {
   // triangles that were clean
   bool checked = false;
   std::vector<char> was_clean;
+  std::vector<char> fresh;  // after a local rewrap since the last check: per triangle, new since
   // per piece of 512 subfacets at the last check: the box of their balls, and whether none was
   // to split then (such a piece stays so until a point is inserted in that box)
   struct piece_summary {
@@ -1032,18 +1034,6 @@ class state3 : public state<3> {
 
   void triangulate(std::uint32_t f) {
     auto& S = facets_[f];
-    // triangulated again before a check: the keys known clean at the last check stay valid
-    if (S.checked) {
-      std::vector<key_set<3>::key> keys;
-      for (std::size_t t = 0; t < S.triangles.size(); ++t)
-        if (S.was_clean[t]) {
-          auto key = S.triangles[t];
-          std::sort(key.begin(), key.end());
-          keys.push_back(key);
-        }
-      S.clean = key_set<3>(keys);
-    }
-    S.checked = false;
     // the last triangulation, whose triangles the wrap keeps where no point added since disturbs
     // them (same result, fewer searches: the conformer's late rounds re-wrap a large facet for a
     // few points)
@@ -1065,25 +1055,70 @@ class state3 : public state<3> {
       else
         for (std::size_t i = ch.size() - 1; i > 0; --i) b.push_back({ch[i], ch[i - 1]});
     }
+    // where the facet was wrapped before, only the cavity the added points and split edges make is
+    // wrapped again (front::rewrap_facet_local): the same triangles, kept ones first
+    const front::facet_change change{previous, added, S.wrapped_boundary};
+    const bool local = reuse && !S.wrapped_boundary.empty();
+    static const bool check_local = std::getenv("GSSE_CHECK_REWRAP") != nullptr;
+    bool local_done = false;
     try {
+      std::optional<std::vector<std::array<vertex_id, 3>>> part;
       if (S.constant[static_cast<std::size_t>(S.axis)]) {
         // an axis-aligned facet's points share the dropped coordinate exactly (splits copy it)
-        const auto grid = front::make_grid(out_.points, S.axis, vs);
-        S.triangles = front::wrap_facet(out_.points, S.axis, grid, b, facet_name(f), nullptr, 0, true,
-                                        reuse ? &again : nullptr, &lines_);
+        if (local) part = front::rewrap_facet_local(out_.points, S.axis, b, change, facet_name(f), &lines_);
+        if (!part || check_local) {
+          const auto grid = front::make_grid(out_.points, S.axis, vs);
+          S.triangles = front::wrap_facet(out_.points, S.axis, grid, b, facet_name(f), nullptr, 0, true,
+                                          reuse ? &again : nullptr, &lines_);
+        }
       } else {
         std::vector<point2> uv(vs.size());
         for (std::size_t i = 0; i < vs.size(); ++i) {
           const point3 d = out_.points[vs[i]] - S.centre;
           uv[i] = {dot(d, S.e1), dot(d, S.e2)};
         }
-        S.triangles = front::wrap_frame(vs, uv, b, facet_name(f), &lines_, reuse ? &again : nullptr);
+        if (local) part = front::rewrap_frame_local(vs, uv, b, change, facet_name(f), &lines_);
+        if (!part || check_local) S.triangles = front::wrap_frame(vs, uv, b, facet_name(f), &lines_, reuse ? &again : nullptr);
       }
+      if (part && check_local) {
+        auto canon = [](std::vector<std::array<vertex_id, 3>> ts) {
+          for (auto& t : ts) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+          std::sort(ts.begin(), ts.end());
+          return ts;
+        };
+        if (canon(*part) != canon(S.triangles))
+          throw std::logic_error(facet_name(f) + ": local rewrap differs (" + std::to_string(part->size()) + " vs " +
+                                 std::to_string(S.triangles.size()) + " triangles)");
+      }
+      if (part) S.triangles = std::move(*part);
+      local_done = part && !check_local;
     } catch (const front::front_error& e) {
       throw conform_error(std::string(e.what()) + " (facet polygons overlap or self-intersect?)");
     }
+    // the check's bookkeeping (encroachers()). Rewrapped locally after a check: the kept
+    // triangles keep their places, and those clean then stay known clean; the new ones are
+    // marked fresh. Else the triangles known clean at the last check are kept as keys
+    S.fresh.clear();
+    if (S.checked && local_done) {
+      S.fresh.assign(S.triangles.size(), 1);
+      for (std::size_t t = 0; t < std::min(previous.size(), S.triangles.size()); ++t) S.fresh[t] = S.triangles[t] != previous[t];
+      S.was_clean.resize(S.triangles.size(), 0);
+    } else {
+      if (S.checked) {
+        std::vector<key_set<3>::key> keys;
+        for (std::size_t t = 0; t < previous.size(); ++t)
+          if (S.was_clean[t]) {
+            auto key = previous[t];
+            std::sort(key.begin(), key.end());
+            keys.push_back(key);
+          }
+        S.clean = key_set<3>(keys);
+      }
+      S.checked = false;
+    }
     index_triangles(f);
     S.wrapped = std::move(vs);
+    S.wrapped_boundary = std::move(b);
   }
 
   /// Triangulates the given facets, in parallel: each reads the shared points and chains and
@@ -1335,8 +1370,14 @@ class state3 : public state<3> {
       auto& S = facets_[w.f];
       const std::size_t k = static_cast<std::size_t>(&w - work.data());
       // a quiet piece of a facet not triangulated since, with no new point near: still quiet
-      if (S.checked && S.pieces[w.a / piece].quiet && !recent.near_box(S.pieces[w.a / piece].lo, S.pieces[w.a / piece].hi)) {
-        summary[k] = S.pieces[w.a / piece];
+      // (after a local rewrap: a piece with no new triangle, as it was then)
+      const bool local = S.checked && !S.fresh.empty();
+      const std::size_t at = w.a / piece;
+      if (S.checked && at < S.pieces.size() && S.pieces[at].quiet &&
+          (!local || std::find(S.fresh.begin() + static_cast<long>(w.a), S.fresh.begin() + static_cast<long>(w.b), 1) ==
+                         S.fresh.begin() + static_cast<long>(w.b)) &&
+          !recent.near_box(S.pieces[at].lo, S.pieces[at].hi)) {
+        summary[k] = S.pieces[at];
         return;
       }
       std::vector<vertex_id> ties;
@@ -1351,7 +1392,7 @@ class state3 : public state<3> {
         if (!S.checked) std::sort(key.begin(), key.end());
         // clean at the last check: only a point inserted since can encroach it
         vertex_id y = no_vertex;
-        const bool known_clean = S.checked || S.clean.contains(key);
+        const bool known_clean = local ? !S.fresh[t] && S.was_clean[t] : S.checked || S.clean.contains(key);
         if (!known_clean || in_closed_ball(recent, T, cc, r)) y = facet_encroacher(T[0], T[1], T[2], cc, r, ties);
         // too large: circumradius above that of the facet lattice's equilateral triangle
         // (size / sqrt 3), not merely by rounding. An edge test ("longer than the size") cut the
@@ -1375,6 +1416,7 @@ class state3 : public state<3> {
              [&](const range& w) { return static_cast<double>(w.b - w.a); });
     for (auto& S : facets_) {
       S.checked = true;
+      S.fresh.clear();
       S.pieces.clear();
     }
     for (std::size_t k = 0; k < work.size(); ++k) facets_[work[k].f].pieces.push_back(summary[k]);
@@ -1973,6 +2015,8 @@ class state3 : public state<3> {
     S.triangles = ts;
     S.boundary_size = boundary_size(f);
     S.wrapped = std::move(vs);
+    S.wrapped_boundary.clear();  // the next triangulation wraps the whole facet
+    S.fresh.clear();
     index_triangles(f);
   }
 

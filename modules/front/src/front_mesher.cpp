@@ -1,6 +1,8 @@
 #include "gsse/front/front_mesher.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <iterator>
 #include <type_traits>
 
 #include "gsse/front/gift_wrap.hpp"
@@ -155,6 +157,182 @@ std::vector<std::array<vertex_id, 3>> wrap_frame(std::span<const vertex_id> ids,
   for (auto& c : cells)
     for (auto& v : c) v = grid.id_at(v);
   return cells;
+}
+
+namespace {
+/// A slanted facet's kernel on vertex ids (uv indexed by id), for a grid over some of its points.
+struct id_frame_kernel : plane_kernel {
+  const facet_lines* lines = nullptr;
+  int side(const face& f, vertex_id y) const {
+    if (lines && lines->collinear(f[0], f[1], y)) return 0;
+    return plane_kernel::side(f, y);
+  }
+};
+
+/// rewrap_facet_local / rewrap_frame_local on a kernel K over vertex ids below `id_bound`.
+template <class K>
+std::optional<std::vector<std::array<vertex_id, 3>>> rewrap_cavity(const K& k, std::size_t id_bound,
+                                                                   const std::vector<std::array<vertex_id, 2>>& boundary,
+                                                                   const facet_change& change, const std::string& label) {
+  using tri = std::array<vertex_id, 3>;
+  using edge = std::array<vertex_id, 2>;
+  using coord = std::array<double, 2>;
+  const auto& prev = change.previous;
+  if (prev.empty() || !k.strict()) return std::nullopt;
+  auto key = [](vertex_id a, vertex_id b) { return (std::uint64_t{a} << 32) | b; };
+  std::vector<std::uint64_t> now, before, split;
+  now.reserve(boundary.size());
+  before.reserve(change.old_boundary.size());
+  for (const auto& e : boundary) now.push_back(key(e[0], e[1]));
+  for (const auto& e : change.old_boundary) before.push_back(key(e[0], e[1]));
+  std::sort(now.begin(), now.end());
+  std::sort(before.begin(), before.end());
+  std::set_difference(before.begin(), before.end(), now.begin(), now.end(), std::back_inserter(split));  // split since
+  std::vector<edge> front;  // the new boundary edges (pieces of split ones) first
+  for (const auto& e : boundary)
+    if (!std::binary_search(before.begin(), before.end(), key(e[0], e[1]))) front.push_back(e);
+  // per vertex id, this thread's marks, cleared after use: 1 an end of a split edge, 2 a vertex of
+  // a dead triangle, 4 a vertex of a new triangle
+  thread_local std::vector<std::uint8_t> mark;
+  if (mark.size() < id_bound) mark.resize(id_bound, 0);
+  for (auto s : split) mark[s >> 32] |= 1, mark[s & 0xffffffffu] |= 1;
+  std::vector<coord> at;
+  at.reserve(change.added.size());
+  for (vertex_id v : change.added) at.push_back(k.grid_coord(v));
+  const point_grid<2> added(at, change.added);
+  // dead: resting on a split edge, or an added point beats the apex of one of its faces (lies in
+  // its perturbed circle, seen from inside), as gift_wrapper::reusable decides per face
+  std::vector<char> dead(prev.size(), 0);
+  std::size_t dead_count = 0;
+  for (std::size_t t = 0; t < prev.size(); ++t) {
+    const tri& c = prev[t];
+    bool d = false;
+    if (!split.empty() && (mark[c[0]] & 1) + (mark[c[1]] & 1) + (mark[c[2]] & 1) >= 2)
+      for (std::size_t i = 0; i < 3 && !d; ++i) d = std::binary_search(split.begin(), split.end(), key(c[(i + 1) % 3], c[(i + 2) % 3]));
+    if (!d && !change.added.empty()) {
+      coord cc;
+      double r = 0;
+      if (!k.ball({c[1], c[2]}, c[0], cc, r)) {
+        d = true;
+      } else {
+        const coord lo{cc[0] - r, cc[1] - r}, hi{cc[0] + r, cc[1] + r};
+        const double r2 = r * r;
+        added.visit_box(lo, hi, [&](vertex_id y, const coord& q) {
+          if ((q[0] - cc[0]) * (q[0] - cc[0]) + (q[1] - cc[1]) * (q[1] - cc[1]) > r2) return true;
+          if (y == c[0] || y == c[1] || y == c[2]) return true;
+          for (std::size_t i = 0; i < 3; ++i) {
+            const edge f{c[(i + 1) % 3], c[(i + 2) % 3]};
+            if (k.side(f, y) > 0 && k.beats(f, c[i], y)) {
+              d = true;
+              return false;
+            }
+          }
+          return true;
+        });
+      }
+    }
+    if (d) dead[t] = 1, ++dead_count;
+  }
+  for (auto s : split) mark[s >> 32] = 0, mark[s & 0xffffffffu] = 0;
+  if (dead_count == 0 && front.empty() && change.added.empty()) return std::vector<tri>(prev.begin(), prev.end());
+  // a cavity of a large part of the facet: the whole wrap costs about the same
+  if (4 * dead_count > prev.size()) return std::nullopt;
+  // the cavity's boundary: the dead triangles' faces met once (into them), less the split edges
+  std::vector<std::pair<std::uint64_t, edge>> met;
+  std::vector<vertex_id> cand(change.added.begin(), change.added.end());
+  for (std::size_t t = 0; t < prev.size(); ++t) {
+    if (!dead[t]) continue;
+    const tri& c = prev[t];
+    for (std::size_t i = 0; i < 3; ++i) {
+      const edge f{c[(i + 1) % 3], c[(i + 2) % 3]};
+      met.push_back({key(std::min(f[0], f[1]), std::max(f[0], f[1])), f});
+      if (!(mark[c[i]] & 2)) mark[c[i]] |= 2, cand.push_back(c[i]);
+    }
+  }
+  for (vertex_id v : cand) mark[v] = 0;
+  std::sort(met.begin(), met.end());
+  for (std::size_t i = 0; i < met.size();) {
+    std::size_t j = i + 1;
+    while (j < met.size() && met[j].first == met[i].first) ++j;
+    if (j - i > 2 || (j - i == 2 && met[i].second == met[i + 1].second)) return std::nullopt;
+    if (j - i == 1 && !std::binary_search(split.begin(), split.end(), key(met[i].second[0], met[i].second[1])))
+      front.push_back(met[i].second);
+    i = j;
+  }
+  for (const auto& e : front)
+    for (vertex_id v : e) cand.push_back(v);
+  std::sort(cand.begin(), cand.end());
+  cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+  std::vector<coord> cc(cand.size());
+  for (std::size_t i = 0; i < cand.size(); ++i) cc[i] = k.grid_coord(cand[i]);
+  const point_grid<2> grid(cc, cand);
+  gift_wrapper<K> w(k, grid);
+  std::vector<tri> made;
+  try {
+    made = w.run(front, label, 0);
+  } catch (const front_error&) {
+    return std::nullopt;  // the whole wrap reports it
+  }
+  // every added point is a vertex of a new triangle, and the new triangles fill what the front
+  // encloses (doubles, relative 1e-8: a safety net, the whole wrap is the fallback)
+  for (const auto& c : made)
+    for (vertex_id v : c) mark[v] |= 4;
+  bool used = true;
+  for (vertex_id v : change.added) used = used && (mark[v] & 4);
+  for (const auto& c : made)
+    for (vertex_id v : c) mark[v] = 0;
+  if (!used) return std::nullopt;
+  auto cross = [&](vertex_id a, vertex_id b, const coord& o) {
+    const coord x = k.grid_coord(a), y = k.grid_coord(b);
+    return (x[0] - o[0]) * (y[1] - o[1]) - (x[1] - o[1]) * (y[0] - o[0]);
+  };
+  const coord o = k.grid_coord(front[0][0]);
+  double enclosed = 0, filled = 0, scale = 0;
+  for (const auto& e : front) {
+    const double v = cross(e[0], e[1], o);
+    enclosed += v, scale += std::abs(v);
+  }
+  for (const auto& c : made) filled += std::abs(cross(c[1], c[2], k.grid_coord(c[0])));
+  if (!(std::abs(std::abs(enclosed) - filled) <= 1e-8 * std::max(scale, filled) + 1e-300)) return std::nullopt;
+  // the new triangles take the dead ones' places, in order, the rest at the end (a cavity of k
+  // points has at least as many new triangles as dead ones); fewer: the kept ones close up
+  std::vector<tri> out(prev.begin(), prev.end());
+  std::size_t m = 0;
+  for (std::size_t t = 0; t < prev.size(); ++t)
+    if (dead[t] && m < made.size()) out[t] = made[m++], dead[t] = 0;
+  out.insert(out.end(), made.begin() + static_cast<long>(m), made.end());
+  if (m < dead_count) {
+    std::size_t kept = 0;
+    for (std::size_t t = 0; t < out.size(); ++t)
+      if (t >= prev.size() || !dead[t]) out[kept++] = out[t];
+    out.resize(kept);
+  }
+  return out;
+}
+}  // namespace
+
+std::optional<std::vector<std::array<vertex_id, 3>>> rewrap_facet_local(std::span<const point3> pts, int axis,
+                                                                        const std::vector<std::array<vertex_id, 2>>& boundary,
+                                                                        const facet_change& change, const std::string& label,
+                                                                        const facet_lines* lines) {
+  const facet_kernel k{pts, axis, true, lines};
+  return rewrap_cavity(k, pts.size(), boundary, change, label);
+}
+
+std::optional<std::vector<std::array<vertex_id, 3>>> rewrap_frame_local(std::span<const vertex_id> ids, std::span<const point2> uv,
+                                                                        const std::vector<std::array<vertex_id, 2>>& boundary,
+                                                                        const facet_change& change, const std::string& label,
+                                                                        const facet_lines* lines) {
+  if (ids.empty()) return std::nullopt;
+  // uv by vertex id, per thread, never cleared: only the facet's own entries are read
+  thread_local std::vector<point2> by_id;
+  const std::size_t bound = static_cast<std::size_t>(*std::max_element(ids.begin(), ids.end())) + 1;
+  if (by_id.size() < bound) by_id.resize(bound);
+  for (std::size_t i = 0; i < ids.size(); ++i) by_id[ids[i]] = uv[i];
+  id_frame_kernel k;
+  k.p = std::span<const point2>(by_id.data(), bound);
+  k.lines = lines;
+  return rewrap_cavity(k, bound, boundary, change, label);
 }
 
 }  // namespace gsse::front

@@ -619,6 +619,19 @@ double cone(const std::vector<point<D>>& p, const face_t<D>& f, const point<D>& 
     return dot(p[f[0]] - o, cross(p[f[1]] - o, p[f[2]] - o));
   }
 }
+/// A bound on the rounding error of cone(p, f, o) (and, with o = a cell's first vertex and f its
+/// other ones, of cell_measure): 16 eps times the product of the edge vectors' 1-norms, far above
+/// the few roundings of a D x D determinant of differences.
+template <std::size_t D, class Face>
+double rounding_bound(const std::vector<point<D>>& p, const Face& f, const point<D>& o) {
+  double bound = 16 * std::numeric_limits<double>::epsilon();
+  for (std::size_t i = 0; i < D; ++i) {
+    double n = 0;
+    for (std::size_t k = 0; k < D; ++k) n += std::abs(p[f[i]][k] - o[k]);
+    bound *= n;
+  }
+  return bound;
+}
 template <std::size_t D>
 double cell_measure(const std::vector<point<D>>& p, const cell_t<D>& c) {
   if constexpr (D == 2) {
@@ -992,14 +1005,22 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       ok[t] = 0;
       return;
     }
+    // (plus a bound on the sums' rounding: cones from one origin over the long, thin faces of a
+    // CAD part's cavity are nearly flat, and their rounding alone exceeded the relative 1e-8 and
+    // sent four rounds of scad_example009 to a full meshing)
     const point<D> o = p[tk.front[0][0]];
-    double enclosed = 0, filled = 0, scale = 0;
+    double enclosed = 0, filled = 0, scale = 0, error = 0;
     for (const auto& F : tk.front) {
       const double v = cone<D>(p, F, o);
-      enclosed += v, scale += std::abs(v);
+      enclosed += v, scale += std::abs(v), error += rounding_bound<D>(p, F, o);
     }
-    for (const auto& c : made[t]) filled += cell_measure<D>(p, c);
-    if (!(std::abs(std::abs(enclosed) - filled) <= 1e-8 * std::max(scale, filled) + 1e-300)) ok[t] = 0;
+    for (const auto& c : made[t]) {
+      filled += cell_measure<D>(p, c);
+      std::array<vertex_id, D> rest;
+      for (std::size_t i = 0; i < D; ++i) rest[i] = c[i + 1];
+      error += rounding_bound<D>(p, rest, p[c[0]]);
+    }
+    if (!(std::abs(std::abs(enclosed) - filled) <= 1e-8 * std::max(scale, filled) + error + 1e-300)) ok[t] = 0;
   }, [&](std::size_t t) { return static_cast<double>(tasks[t].front.size()); });
   if (std::find(ok.begin(), ok.end(), 0) != ok.end()) return false;
   // every new point must be a vertex of a new cell (none lies outside every cavity)

@@ -3,6 +3,7 @@
 // Instantiated once in the library for 3D tetrahedra, 2D triangles and planar facets of 3D PLCs.
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -59,6 +60,14 @@ struct facet_rewrap {
 };
 
 struct facet_lines;
+/// A facet triangulated again where points came (rewrap_facet_local, rewrap_frame_local): its last
+/// triangles, the vertices added since and the boundary edges it was last wrapped with.
+struct facet_change {
+  std::span<const std::array<vertex_id, 3>> previous;
+  std::span<const vertex_id> added;
+  std::span<const std::array<vertex_id, 2>> old_boundary;
+};
+
 /// Triangles of a planar facet of 3D points: edges with the facet on their left in the projection
 /// dropping `axis`; the grid must be built with the same axis. `coplanar`: the points are exactly
 /// coplanar (e.g. all share the dropped coordinate), which allows the faster exact search and,
@@ -79,5 +88,21 @@ std::vector<std::array<vertex_id, 3>> wrap_frame(std::span<const vertex_id> ids,
                                                  const std::vector<std::array<vertex_id, 2>>& boundary,
                                                  const std::string& label, const facet_lines* lines = nullptr,
                                                  const facet_rewrap* again = nullptr);
+
+/// The same triangles as wrap_facet / wrap_frame with `again`, by re-wrapping only the cavity: the
+/// previous triangles whose (perturbed) circle holds an added point or that rest on a boundary
+/// edge split since. The kept triangles keep their places; the new ones take the dead ones' places
+/// in order, and the rest follow at the end.
+/// Empty (no value) when the cavity is a large part of the facet or anything does not add up:
+/// the caller then wraps the whole facet.
+std::optional<std::vector<std::array<vertex_id, 3>>> rewrap_facet_local(std::span<const point3> pts, int axis,
+                                                                        const std::vector<std::array<vertex_id, 2>>& boundary,
+                                                                        const facet_change& change, const std::string& label,
+                                                                        const facet_lines* lines = nullptr);
+/// For a slanted facet: `ids` (ascending) and `uv` as for wrap_frame.
+std::optional<std::vector<std::array<vertex_id, 3>>> rewrap_frame_local(std::span<const vertex_id> ids, std::span<const point2> uv,
+                                                                        const std::vector<std::array<vertex_id, 2>>& boundary,
+                                                                        const facet_change& change, const std::string& label,
+                                                                        const facet_lines* lines = nullptr);
 
 }  // namespace gsse::front
