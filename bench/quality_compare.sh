@@ -9,6 +9,7 @@
 # is checked by ../shared's meshcheck: its Delaunay verdict (deepest vertex inside a circumsphere,
 # as a fraction of the squared radius), radius-edge maximum and count above 1.414, dihedral minimum
 # and count below 5 degrees. Prints one Markdown row per configuration. Installs tetgen if missing.
+# SIZE_PICK=1 or 2: only the first (about 1e5) or second (about 6e5) size of each structure.
 # ROTATE=1: the structures turned by structures.py --rotate (no facet parallel to an axis), checked
 # with --inexact-ok by the fixed copy of meshcheck (tests/support/meshcheck_fixed.py; the shipped
 # one reports rounding slivers on slanted facets as non-conforming, docs/benchmarks.md).
@@ -30,6 +31,10 @@ else
 fi
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 declare -A SIZES=([mosfet]="0.0304 0.0161" [diffusion]="0.0451 0.0248" [trench]="0.0442 0.0243" [finfet]="0.0276 0.0152")
+# SIZE_PICK=1: only the first size (about 1e5 tetrahedra), 2: only the second (about 6e5)
+if [ -n "${SIZE_PICK:-}" ]; then
+  for s in "${!SIZES[@]}"; do read -ra hs <<< "${SIZES[$s]}"; SIZES[$s]=${hs[$((SIZE_PICK - 1))]}; done
+fi
 run() {  # command... ; prints "seconds peak_MB"
   local t0=$EPOCHREALTIME
   /usr/bin/time -f "%M" -o "$work/time" "$@" > "$work/log" 2>&1 || { echo "FAILED: $* (see below)" >&2; tail -3 "$work/log" >&2; return 1; }

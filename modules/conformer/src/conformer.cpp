@@ -762,6 +762,7 @@ struct facet_state {
   bool checked = false;
   std::vector<char> was_clean;
   std::vector<char> fresh;  // after a local rewrap since the last check: per triangle, new since
+  bool flat_local = false;  // fresh also marks the triangles new since the last flat_pairs
   // per piece of 512 subfacets at the last check: the box of their balls, and whether none was
   // to split then (such a piece stays so until a point is inserted in that box)
   struct piece_summary {
@@ -1099,6 +1100,8 @@ class state3 : public state<3> {
     // triangles keep their places, and those clean then stay known clean; the new ones are
     // marked fresh. Else the triangles known clean at the last check are kept as keys
     S.fresh.clear();
+    // the last flat check saw the vertices of the last wrap: the triangles new since are the fresh ones
+    S.flat_local = local_done && S.checked && S.flat_checked == S.wrapped;
     if (S.checked && local_done) {
       S.fresh.assign(S.triangles.size(), 1);
       for (std::size_t t = 0; t < std::min(previous.size(), S.triangles.size()); ++t) S.fresh[t] = S.triangles[t] != previous[t];
@@ -1490,6 +1493,74 @@ class state3 : public state<3> {
     return grid_.for_box(lo, hi).visit_rings(g, lo, hi, outside, [] { return false; });
   }
 
+  /// The triangle of facet f other than t with the edge uv (found through the triangle cells
+  /// about the edge's midpoint, which every triangle on the edge is filed under), or -1.
+  long across(std::uint32_t f, std::size_t t, vertex_id u, vertex_id v) const {
+    const auto& S = facets_[f];
+    const auto& C = S.cells;
+    if (C.start.empty()) return -1;
+    const point2 m = geometry::project(0.5 * (out_.points[u] + out_.points[v]), S.axis);
+    const double x = (m[0] - C.lo[0]) * C.inv, y = (m[1] - C.lo[1]) * C.inv;
+    const long cx = std::clamp(static_cast<long>(std::max(x, 0.0)), 0l, C.nx - 1);
+    const long cy = std::clamp(static_cast<long>(std::max(y, 0.0)), 0l, C.ny - 1);
+    const auto c = static_cast<std::size_t>(cy * C.nx + cx);
+    for (auto k = C.start[c]; k < C.start[c + 1]; ++k) {
+      const auto t2 = C.items[k];
+      if (t2 == t) continue;
+      const auto& T = S.triangles[t2];
+      const bool has_u = T[0] == u || T[1] == u || T[2] == u, has_v = T[0] == v || T[1] == v || T[2] == v;
+      if (has_u && has_v) return static_cast<long>(t2);
+    }
+    return -1;
+  }
+
+  /// flat_pairs for a facet re-wrapped locally since its last flat check: the new triangles are
+  /// the fresh ones, and each one's partners are found across its edges, not by listing every
+  /// edge of the facet. The same pairs, tested the same way, as the whole pass.
+  std::vector<split_candidate> flat_pairs_local(std::uint32_t f) {
+    auto& S = facets_[f];
+    std::vector<split_candidate> mine;
+    std::vector<std::array<vertex_id, 4>> fresh;
+    for (std::size_t t = 0; t < S.triangles.size(); ++t) {
+      if (!S.fresh[t]) continue;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const vertex_id a = S.triangles[t][(k + 1) % 3], b = S.triangles[t][(k + 2) % 3], w = S.triangles[t][k];
+        const long t2l = across(f, t, a, b);
+        if (t2l < 0) continue;
+        const auto t2 = static_cast<std::size_t>(t2l);
+        if (S.fresh[t2] && t2 < t) continue;  // the pair once
+        const auto& T2 = S.triangles[t2];
+        const vertex_id z = T2[0] != a && T2[0] != b ? T2[0] : T2[1] != a && T2[1] != b ? T2[1] : T2[2];
+        // as in flat_pairs: the side of the lower-indexed triangle where the other's apex is
+        const std::size_t lo = std::min(t, t2);
+        const vertex_id apex = lo == t ? z : w;
+        const auto& T = S.triangles[lo];
+        const int o = geometry::orient3d(out_.points[T[0]], out_.points[T[1]], out_.points[T[2]], out_.points[apex]);
+        if (o == 0 || !meshed_[f][o > 0 ? 0 : 1]) continue;
+        std::array<vertex_id, 4> id{a, b, w, z};
+        std::sort(id.begin(), id.end());
+        if (std::binary_search(S.not_flat.begin(), S.not_flat.end(), id)) continue;
+        if (delaunay_cell(std::min(a, b), std::max(a, b), lo == t ? w : z, lo == t ? z : w, f))
+          mine.push_back({f, static_cast<std::uint32_t>(std::max(t, t2)), no_vertex, true});
+        else
+          fresh.push_back(id);
+      }
+    }
+    std::sort(mine.begin(), mine.end(), [](const split_candidate& x, const split_candidate& y) { return x.t < y.t; });
+    if (mine.empty())
+      S.flat_checked = S.wrapped;
+    else
+      S.flat_checked.clear();
+    if (!fresh.empty()) {
+      std::sort(fresh.begin(), fresh.end());
+      fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
+      std::vector<std::array<vertex_id, 4>> merged;
+      std::merge(S.not_flat.begin(), S.not_flat.end(), fresh.begin(), fresh.end(), std::back_inserter(merged));
+      S.not_flat = std::move(merged);
+    }
+    return mine;
+  }
+
   /// Subfacets to split because the front mesher would otherwise build a flat tetrahedron on
   /// them: two subfacets of one slanted facet sharing an edge whose four points are coplanar and
   /// cocircular up to rounding (a rotated rectangle) can form a Delaunay tetrahedron of no volume
@@ -1507,6 +1578,10 @@ class state3 : public state<3> {
       const std::uint32_t f = fs[i];
       const auto& S = facets_[f];
       if (S.constant[static_cast<std::size_t>(S.axis)]) return;  // exactly planar: no such tetrahedra
+      if (S.flat_local && S.fresh.size() == S.triangles.size()) {
+        found[i] = flat_pairs_local(f);
+        return;
+      }
       // Only pairs with a triangle new since this facet's last check: the triangulation is the
       // (constrained, perturbed) Delaunay triangulation of the facet's vertices, so a triangle of
       // vertices all there at the last check was there then (its empty circle is empty in the
