@@ -1531,34 +1531,53 @@ class state3 : public state<3> {
         if (S.fresh[t2] && t2 < t) continue;  // the pair once
         const auto& T2 = S.triangles[t2];
         const vertex_id z = T2[0] != a && T2[0] != b ? T2[0] : T2[1] != a && T2[1] != b ? T2[1] : T2[2];
-        // as in flat_pairs: the side of the lower-indexed triangle where the other's apex is
-        const std::size_t lo = std::min(t, t2);
-        const vertex_id apex = lo == t ? z : w;
-        const auto& T = S.triangles[lo];
-        const int o = geometry::orient3d(out_.points[T[0]], out_.points[T[1]], out_.points[T[2]], out_.points[apex]);
-        if (o == 0 || !meshed_[f][o > 0 ? 0 : 1]) continue;
-        std::array<vertex_id, 4> id{a, b, w, z};
-        std::sort(id.begin(), id.end());
-        if (std::binary_search(S.not_flat.begin(), S.not_flat.end(), id)) continue;
-        if (delaunay_cell(std::min(a, b), std::max(a, b), lo == t ? w : z, lo == t ? z : w, f))
-          mine.push_back({f, static_cast<std::uint32_t>(std::max(t, t2)), no_vertex, true});
+        const auto ti = static_cast<std::uint32_t>(t), t2i = static_cast<std::uint32_t>(t2);
+        if (t < t2)
+          flat_pair(f, std::min(a, b), std::max(a, b), ti, w, t2i, z, mine, fresh);
         else
-          fresh.push_back(id);
+          flat_pair(f, std::min(a, b), std::max(a, b), t2i, z, ti, w, mine, fresh);
       }
     }
+    end_flat_check(f, mine, fresh);
+    return mine;
+  }
+
+  /// The pair of facet f's triangles t and t2 > t across edge uv (u < v), with apexes w and z:
+  /// the tetrahedron uvwz, on the side of t where z is, if that side gets meshed, is a flat pair
+  /// to split (at t2) when it is Delaunay, else it joins `not_flat` (it stays so: points are only
+  /// added, so it is checked once).
+  void flat_pair(std::uint32_t f, vertex_id u, vertex_id v, std::uint32_t t, vertex_id w, std::uint32_t t2, vertex_id z,
+                 std::vector<split_candidate>& mine, std::vector<std::array<vertex_id, 4>>& not_flat) const {
+    const auto& S = facets_[f];
+    const auto& T = S.triangles[t];
+    const int o = geometry::orient3d(out_.points[T[0]], out_.points[T[1]], out_.points[T[2]], out_.points[z]);
+    if (o == 0 || !meshed_[f][o > 0 ? 0 : 1]) return;
+    std::array<vertex_id, 4> id{u, v, w, z};
+    std::sort(id.begin(), id.end());
+    if (std::binary_search(S.not_flat.begin(), S.not_flat.end(), id)) return;
+    if (delaunay_cell(u, v, w, z, f))
+      mine.push_back({f, t2, no_vertex, true});
+    else
+      not_flat.push_back(id);
+  }
+
+  /// After facet f's flat check: `mine` (the pairs to split) in triangle order; the facet counts
+  /// as checked at its present vertices if there are none; the pairs found not flat are kept.
+  void end_flat_check(std::uint32_t f, std::vector<split_candidate>& mine, std::vector<std::array<vertex_id, 4>>& not_flat) {
+    auto& S = facets_[f];
     std::sort(mine.begin(), mine.end(), [](const split_candidate& x, const split_candidate& y) { return x.t < y.t; });
+    // should a pair found flat not be split (a candidate skipped), the next check is a whole one
     if (mine.empty())
       S.flat_checked = S.wrapped;
     else
       S.flat_checked.clear();
-    if (!fresh.empty()) {
-      std::sort(fresh.begin(), fresh.end());
-      fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
+    if (!not_flat.empty()) {
+      std::sort(not_flat.begin(), not_flat.end());
+      not_flat.erase(std::unique(not_flat.begin(), not_flat.end()), not_flat.end());
       std::vector<std::array<vertex_id, 4>> merged;
-      std::merge(S.not_flat.begin(), S.not_flat.end(), fresh.begin(), fresh.end(), std::back_inserter(merged));
+      std::merge(S.not_flat.begin(), S.not_flat.end(), not_flat.begin(), not_flat.end(), std::back_inserter(merged));
       S.not_flat = std::move(merged);
     }
-    return mine;
   }
 
   /// Subfacets to split because the front mesher would otherwise build a flat tetrahedron on
@@ -1629,35 +1648,12 @@ class state3 : public state<3> {
         if (key != key2) continue;
         if (!all && !fresh_tri[t] && !fresh_tri[t2]) continue;  // checked before
         const auto u = static_cast<vertex_id>(key >> 32), v = static_cast<vertex_id>(key & 0xffffffffu);
-        // the tetrahedron lies on the side of triangle t (oriented like the facet) where z is:
-        // only a side that gets meshed matters
-        const auto& T = S.triangles[t];
-        const int o = geometry::orient3d(out_.points[T[0]], out_.points[T[1]], out_.points[T[2]], out_.points[z]);
-        if (o == 0 || !meshed_[f][o > 0 ? 0 : 1]) continue;
-        // a tetrahedron found not Delaunay stays so (points are only added): checked once
-        std::array<vertex_id, 4> id{u, v, w, z};
-        std::sort(id.begin(), id.end());
-        if (std::binary_search(S.not_flat.begin(), S.not_flat.end(), id)) continue;
-        if (delaunay_cell(u, v, w, z, f))
-          mine.push_back({f, std::max(t, t2), no_vertex, true});
-        else
-          fresh.push_back(id);
+        flat_pair(f, u, v, t, w, t2, z, mine, fresh);
       }
-      std::sort(mine.begin(), mine.end(), [](const split_candidate& x, const split_candidate& y) { return x.t < y.t; });
+      // only this task writes facet f's state (before, the pairs were moved out first, so a facet
+      // with pairs found counted as checked all the same)
+      end_flat_check(f, mine, fresh);
       found[i] = std::move(mine);
-      // only this task writes facet f's state. A pair found flat is to be split; should it not
-      // be (a candidate skipped), the next check of this facet is a whole one again
-      if (mine.empty())
-        facets_[f].flat_checked = S.wrapped;
-      else
-        facets_[f].flat_checked.clear();
-      if (!fresh.empty()) {
-        auto& cache = facets_[f].not_flat;
-        std::sort(fresh.begin(), fresh.end());
-        std::vector<std::array<vertex_id, 4>> merged;
-        std::merge(cache.begin(), cache.end(), fresh.begin(), fresh.end(), std::back_inserter(merged));
-        cache = std::move(merged);
-      }
     }, [&](std::size_t i) { return static_cast<double>(facets_[fs[i]].triangles.size()); });
     std::vector<split_candidate> all;
     for (auto& v : found) all.insert(all.end(), v.begin(), v.end());
