@@ -1057,7 +1057,7 @@ class state3 : public state<3> {
         for (std::size_t i = ch.size() - 1; i > 0; --i) b.push_back({ch[i], ch[i - 1]});
     }
     // where the facet was wrapped before, only the cavity the added points and split edges make is
-    // wrapped again (front::rewrap_facet_local): the same triangles, kept ones first
+    // wrapped again (front::rewrap_facet_local): the same triangles, kept ones in their places
     const front::facet_change change{previous, added, S.wrapped_boundary};
     const bool local = reuse && !S.wrapped_boundary.empty();
     static const bool check_local = std::getenv("GSSE_CHECK_REWRAP") != nullptr;
@@ -1099,13 +1099,19 @@ class state3 : public state<3> {
     // the check's bookkeeping (encroachers()). Rewrapped locally after a check: the kept
     // triangles keep their places, and those clean then stay known clean; the new ones are
     // marked fresh. Else the triangles known clean at the last check are kept as keys
+    // (fresh since the check: also those fresh at an earlier re-wrap with no check between, and a
+    // fresh place never counts as clean, whatever the triangle there before was)
+    const std::vector<char> fresh_before = std::move(S.fresh);
     S.fresh.clear();
     // the last flat check saw the vertices of the last wrap: the triangles new since are the fresh ones
     S.flat_local = local_done && S.checked && S.flat_checked == S.wrapped;
     if (S.checked && local_done) {
       S.fresh.assign(S.triangles.size(), 1);
-      for (std::size_t t = 0; t < std::min(previous.size(), S.triangles.size()); ++t) S.fresh[t] = S.triangles[t] != previous[t];
+      for (std::size_t t = 0; t < std::min(previous.size(), S.triangles.size()); ++t)
+        S.fresh[t] = S.triangles[t] != previous[t] || (t < fresh_before.size() && fresh_before[t]);
       S.was_clean.resize(S.triangles.size(), 0);
+      for (std::size_t t = 0; t < S.triangles.size(); ++t)
+        if (S.fresh[t]) S.was_clean[t] = 0;
     } else {
       if (S.checked) {
         std::vector<key_set<3>::key> keys;
