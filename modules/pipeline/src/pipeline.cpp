@@ -16,6 +16,7 @@
 #include <memory>
 #include <set>
 
+#include "gsse/container/union_find.hpp"
 #include "gsse/front/front_mesher.hpp"
 #include "gsse/front/gift_wrap.hpp"
 #include "gsse/geometry/hash_grid.hpp"
@@ -349,7 +350,10 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
     // keep-off distance from the boundary faces (not only their vertices: a lattice point close to
     // a facet's interior would be projected onto it, leaving a very short edge), through a hash
     // of the faces' bounding boxes; double distances only place points, they decide no topology
-    const double keep = 0.5 * h;
+    // (a hair over half the lattice's neighbour distance h: two neighbours both this far from
+    // every face have no face between them, so the segment test below is asked once per
+    // connected set of clear points; 1e-7 covers the rounding of positions and distances)
+    const double keep = 0.5 * h * (1 + 1e-7);
     hash_grid<D> near(lo, keep);
     for (std::uint32_t f = 0; f < b.faces.size(); ++f) {
       std::array<point<D>, D> v;
@@ -365,29 +369,26 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
         return sizing::triangle_distance2(b.points[F[0]], b.points[F[1]], b.points[F[2]], q);
       }
     };
-    // a dense map of the cells within `keep` of some face's box: a lattice point in an unmarked
-    // cell is clear without a look at the hash (most of a slanted model's bounding box is far
-    // from every face, and each look hashes the 27 cells about the point: a tenth of the rotated
-    // MOSFET's run). Only a filter: a marked cell still asks the faces. Skipped above 2^26 cells.
+    // a dense map of the cells the hash's ring search below can find a face from (within one cell
+    // of an occupied one): a lattice point in an unmarked cell is clear without a look at the
+    // hash (most of a slanted model's bounding box is far from every face, and each look hashes
+    // the 3^D cells about the point). Marked from the hash's own cells, not the faces' boxes (a
+    // slanted face's box is a volume of cells: on the rotated structures most cells were marked),
+    // so a point is unmarked exactly when the ring search would find no face. Skipped above 2^26
+    // cells or 2^20 along an axis (the hash's cell keys are exact below that).
     std::array<long, D> dims{};
     double cells_total = 1;
     for (std::size_t k = 0; k < D; ++k) {
       dims[k] = static_cast<long>((hi[k] - lo[k]) / keep) + 1;
       cells_total *= static_cast<double>(dims[k]);
+      if (dims[k] >= (1l << 20)) cells_total = 1e300;
     }
     std::vector<char> marked;
-    auto cell_at = [&](std::size_t k, double x) {
-      return std::clamp(static_cast<long>(std::floor((x - lo[k]) / keep)), 0l, dims[k] - 1);
-    };
     if (cells_total <= double(1 << 26)) {
       marked.assign(static_cast<std::size_t>(cells_total), 0);
-      for (const auto& F : b.faces) {
-        std::array<long, D> a{}, e{};
-        for (std::size_t k = 0; k < D; ++k) {
-          double x0 = b.points[F[0]][k], x1 = x0;
-          for (vertex_id v : F) x0 = std::min(x0, b.points[v][k]), x1 = std::max(x1, b.points[v][k]);
-          a[k] = cell_at(k, x0 - keep), e[k] = cell_at(k, x1 + keep);
-        }
+      near.for_each_occupied([&](const typename hash_grid<D>::cell& o) {
+        typename hash_grid<D>::cell a = o, e = o;
+        for (std::size_t k = 0; k < D; ++k) a[k] = std::clamp(o[k] - 1, 0l, dims[k] - 1), e[k] = std::clamp(o[k] + 1, 0l, dims[k] - 1);
         if constexpr (D == 3) {
           for (long z = a[2]; z <= e[2]; ++z)
             for (long y = a[1]; y <= e[1]; ++y)
@@ -395,12 +396,15 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
         } else {
           for (long y = a[1]; y <= e[1]; ++y) std::fill_n(marked.begin() + (y * dims[0] + a[0]), e[0] - a[0] + 1, 1);
         }
-      }
+      });
     }
     auto clear_of_boundary = [&](const point<D>& q) {
       if (!marked.empty()) {
+        // the hash's own cell of q, clamped into the map: an occupied cell within one cell of q's
+        // lies within one cell of the clamped one too (clamping keeps the order of coordinates)
+        const auto c = near.cell_of(q);
         std::size_t i = 0;
-        for (std::size_t k = D; k-- > 0;) i = i * static_cast<std::size_t>(dims[k]) + static_cast<std::size_t>(cell_at(k, q[k]));
+        for (std::size_t k = D; k-- > 0;) i = i * static_cast<std::size_t>(dims[k]) + static_cast<std::size_t>(std::clamp(c[k], 0l, dims[k] - 1));
         if (!marked[i]) return true;
       }
       return near.visit_ring(q, 1, [&](std::uint32_t f) { return face_distance2(f, q) >= keep * keep; });
@@ -411,30 +415,105 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
     const double rowh = D == 3 ? a : h * std::sqrt(3.0) / 2;
     std::array<long, D> n;
     for (std::size_t k = 0; k < D; ++k) n[k] = static_cast<long>((hi[k] - lo[k]) / (k == 1 && D == 2 ? rowh : a)) + 2;
-    // slabs of the lattice (by its last index) classified in parallel, kept in slab order
+    // the lattice point k of slab s (its last index): 3D k = 2 (i n1 + j) + corner/centre
     const long slabs = n[D - 1];
-    std::vector<std::vector<point<D>>> kept(static_cast<std::size_t>(slabs));
+    const std::size_t per_slab = D == 3 ? static_cast<std::size_t>(2 * n[0] * n[1]) : static_cast<std::size_t>(n[0]);
+    auto lattice_point = [&](long s, std::size_t k) -> point<D> {
+      if constexpr (D == 3) {
+        const auto ij = static_cast<long>(k / 2);
+        const long i = ij / n[1], j = ij % n[1];
+        point3 q{lo[0] + a * (static_cast<double>(i) + 0.0137), lo[1] + a * (static_cast<double>(j) + 0.0271),
+                 lo[2] + a * (static_cast<double>(s) + 0.0419)};
+        if (k % 2) q = q + point3{a / 2, a / 2, a / 2};
+        return q;
+      } else {
+        const auto i = static_cast<long>(k);
+        return point2{lo[0] + a * (static_cast<double>(i) + 0.0137 + 0.5 * static_cast<double>(s % 2)),
+                      lo[1] + rowh * (static_cast<double>(s) + 0.0271)};
+      }
+    };
+    // 1. which points are clear of the boundary, slab by slab in parallel
+    std::vector<std::vector<char>> clear(static_cast<std::size_t>(slabs));
     std::vector<long> ids(static_cast<std::size_t>(slabs));
     std::iota(ids.begin(), ids.end(), 0l);
+    for_each(execution::par(co.threads), ids, [&](long s) {
+      std::vector<char> c(per_slab);
+      for (std::size_t k = 0; k < per_slab; ++k) c[k] = clear_of_boundary(lattice_point(s, k)) ? 1 : 0;
+      clear[static_cast<std::size_t>(s)] = std::move(c);
+    });
+    // 2. whether they lie in a segment. Lattice neighbours (3D: a corner and the 8 centres about
+    // it; 2D: the 6 about a point) are h apart, so no face passes between two clear neighbours
+    // (it would come within h/2 < keep of one): the points joined through clear neighbours lie on
+    // one side of every face, and the exact point location is asked once per such set, at its
+    // first point. Skipped (each point asked) for a lattice of over 2^24 points, or coordinates
+    // so far from the origin, against h, that rounding nears the margin.
+    double mag = 0;
+    for (std::size_t k = 0; k < D; ++k) mag = std::max({mag, std::abs(lo[k]), std::abs(hi[k]) + 2 * a});
+    const double points_total = static_cast<double>(per_slab) * static_cast<double>(slabs);
+    const bool joined = points_total <= double(1 << 24) && mag * 256 * std::numeric_limits<double>::epsilon() < 1e-9 * h;
+    std::vector<char> in_of;             // per root: in a segment
+    std::vector<std::uint32_t> root_of;  // per point: its root
+    if (joined) {
+      const std::size_t total = per_slab * static_cast<std::size_t>(slabs);
+      auto is_clear = [&](std::size_t x) { return clear[x / per_slab][x % per_slab] != 0; };
+      union_find<std::uint32_t> uf(total);
+      auto link = [&](std::size_t x, std::size_t y) {
+        if (is_clear(y)) uf.unite(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y));
+      };
+      for (long s = 0; s < slabs; ++s)
+        for (std::size_t k = 0; k < per_slab; ++k) {
+          const std::size_t x = static_cast<std::size_t>(s) * per_slab + k;
+          if (!is_clear(x)) continue;
+          if constexpr (D == 3) {
+            if (k % 2) continue;  // from the corners only: each to the centres of the 8 cubes about it
+            const auto ij = static_cast<long>(k / 2);
+            const long i = ij / n[1], j = ij % n[1];
+            for (long ds = -1; ds <= 0; ++ds)
+              for (long di = -1; di <= 0; ++di)
+                for (long dj = -1; dj <= 0; ++dj) {
+                  const long S = s + ds, I = i + di, J = j + dj;
+                  if (S < 0 || I < 0 || J < 0) continue;
+                  link(x, static_cast<std::size_t>(S) * per_slab + static_cast<std::size_t>(2 * (I * n[1] + J) + 1));
+                }
+          } else {
+            const auto i = static_cast<long>(k);
+            if (i + 1 < n[0]) link(x, x + 1);
+            if (s + 1 < slabs) {
+              const long other = s % 2 ? i + 1 : i - 1;  // the row above is shifted by half the other way
+              for (long I : {i, other})
+                if (I >= 0 && I < n[0]) link(x, static_cast<std::size_t>(s + 1) * per_slab + static_cast<std::size_t>(I));
+            }
+          }
+        }
+      // every point to its root (the smallest index of its set: its first point; parents have
+      // smaller indices, so one pass in order), the roots asked in parallel
+      auto& up = uf.up;
+      for (std::size_t x = 0; x < total; ++x) up[x] = up[up[x]];
+      std::vector<std::uint32_t> roots;
+      for (std::size_t x = 0; x < total; ++x)
+        if (up[x] == x && is_clear(x)) roots.push_back(static_cast<std::uint32_t>(x));
+      std::vector<char> root_in(roots.size());
+      std::vector<std::size_t> which(roots.size());
+      std::iota(which.begin(), which.end(), std::size_t{0});
+      for_each(execution::par(co.threads), which, [&](std::size_t r) {
+        const std::uint32_t x = roots[r];
+        root_in[r] = m.in_segment(lattice_point(static_cast<long>(x / per_slab), x % per_slab)) ? 1 : 0;
+      });
+      in_of.assign(total, 0);
+      for (std::size_t r = 0; r < roots.size(); ++r) in_of[roots[r]] = root_in[r];
+      root_of = std::move(up);
+    }
+    // 3. the points kept, in slab order
+    std::vector<std::vector<point<D>>> kept(static_cast<std::size_t>(slabs));
     for_each(execution::par(co.threads), ids, [&](long s) {
       // filled locally, moved once: neighbouring vectors' headers share cache lines
       std::vector<point<D>> out_s;
       std::uint32_t hint = coarse_model<D>::no_cell;
-      auto consider = [&](const point<D>& q) {
-        if (clear_of_boundary(q) && in_segment(q, hint)) out_s.push_back(q);
-      };
-      if constexpr (D == 3) {
-        for (long i = 0; i < n[0]; ++i)
-          for (long j = 0; j < n[1]; ++j) {
-            const point3 q{lo[0] + a * (static_cast<double>(i) + 0.0137), lo[1] + a * (static_cast<double>(j) + 0.0271),
-                           lo[2] + a * (static_cast<double>(s) + 0.0419)};
-            consider(q);
-            consider(q + point3{a / 2, a / 2, a / 2});
-          }
-      } else {
-        for (long i = 0; i < n[0]; ++i)
-          consider(point2{lo[0] + a * (static_cast<double>(i) + 0.0137 + 0.5 * static_cast<double>(s % 2)),
-                          lo[1] + rowh * (static_cast<double>(s) + 0.0271)});
+      const auto& c = clear[static_cast<std::size_t>(s)];
+      for (std::size_t k = 0; k < per_slab; ++k) {
+        if (!c[k]) continue;
+        const point<D> q = lattice_point(s, k);
+        if (joined ? in_of[root_of[static_cast<std::size_t>(s) * per_slab + k]] != 0 : in_segment(q, hint)) out_s.push_back(q);
       }
       kept[static_cast<std::size_t>(s)] = std::move(out_s);
     });

@@ -845,8 +845,20 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   }, [&](const chunk& ch) { return static_cast<double>(ch.count); });
   // 2. each region's cavity boundary: the faces of its dead cells met once, less the gone faces,
   // plus the new boundary faces on its side
-  // the points by place, to find those a task's cavities can use (below)
-  const auto grid = front::make_grid(std::span<const point<D>>(p));
+  // the points a cavity can use, by place: the vertices of the dead cells (the cavity's boundary
+  // vertices and any old vertex inside it, all of whose cells died) and the new points; an old
+  // point outside every cavity is never an apex there (the fill is Delaunay), and a grid of these
+  // alone follows the round's work, not the mesh's size (a late round re-fills a few cavities)
+  std::vector<char> usable(p.size(), 0);
+  for (std::size_t r = 0; r < cells.size(); ++r)
+    for (std::size_t i = 0; i < cells[r].size(); ++i)
+      if (dead[r][i])
+        for (auto v : cells[r][i]) usable[v] = 1;
+  std::vector<vertex_id> usable_ids;
+  std::vector<point<D>> usable_at;
+  for (std::size_t v = 0; v < p.size(); ++v)
+    if (usable[v] || v >= n0) usable_ids.push_back(static_cast<vertex_id>(v)), usable_at.push_back(p[v]);
+  const front::point_grid<D> grid(usable_at, usable_ids);
   point<D> all_lo = p[0], all_hi = p[0];
   for (const auto& q : p)
     for (std::size_t k = 0; k < D; ++k) all_lo[k] = std::min(all_lo[k], q[k]), all_hi[k] = std::max(all_hi[k], q[k]);

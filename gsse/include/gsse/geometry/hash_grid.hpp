@@ -179,6 +179,12 @@ class hash_grid {
 
   /// Occupied cells.
   std::size_t occupied() const { return buckets_.size(); }
+  /// Calls f(cell) for every occupied cell, in the table's order (callers must not depend on it).
+  template <class F>
+  void for_each_occupied(F&& f) const {
+    for (std::size_t i = 0; i < keys_.size(); ++i)
+      if (keys_[i] != empty) f(unkey(keys_[i]));
+  }
 
   /// The same for the cells within `ring` cells of q's cell.
   template <class F>
