@@ -771,6 +771,13 @@ struct facet_state {
   };
   std::vector<piece_summary> pieces;
   key_set<3> clean;
+  // per triangle, by place, kept while the same triangle stays in its place (local re-wraps keep
+  // the undisturbed ones where they were): its equatorial ball bound (detail::equatorial_bound;
+  // ball_known 0: not computed yet) and its circle in the wrap's plane coordinates
+  // (front::facet_change::circles)
+  std::vector<std::pair<point3, double>> ball;
+  std::vector<char> ball_known;
+  std::vector<std::array<double, 3>> circles;
 };
 
 class state3 : public state<3> {
@@ -1058,7 +1065,8 @@ class state3 : public state<3> {
     }
     // where the facet was wrapped before, only the cavity the added points and split edges make is
     // wrapped again (front::rewrap_facet_local): the same triangles, kept ones in their places
-    const front::facet_change change{previous, added, S.wrapped_boundary};
+    S.circles.resize(previous.size(), {0, 0, std::numeric_limits<double>::quiet_NaN()});
+    const front::facet_change change{previous, added, S.wrapped_boundary, &S.circles};
     const bool local = reuse && !S.wrapped_boundary.empty();
     static const bool check_local = std::getenv("GSSE_CHECK_REWRAP") != nullptr;
     bool local_done = false;
@@ -1124,6 +1132,16 @@ class state3 : public state<3> {
         S.clean = key_set<3>(keys);
       }
       S.checked = false;
+    }
+    // the per-place caches: a place whose triangle changed (or is new) is unknown
+    {
+      const std::size_t n = S.triangles.size(), kept = std::min(previous.size(), n);
+      const double unknown = std::numeric_limits<double>::quiet_NaN();
+      S.ball.resize(n);
+      S.ball_known.resize(n, 0);
+      S.circles.resize(n, {0, 0, unknown});
+      for (std::size_t t = 0; t < n; ++t)
+        if (t >= kept || S.triangles[t] != previous[t]) S.ball_known[t] = 0, S.circles[t] = {0, 0, unknown};
     }
     index_triangles(f);
     S.wrapped = std::move(vs);
@@ -1370,6 +1388,8 @@ class state3 : public state<3> {
     std::vector<range> work;
     for (std::uint32_t f = 0; f < facets_.size(); ++f) {
       facets_[f].was_clean.resize(facets_[f].triangles.size());
+      facets_[f].ball.resize(facets_[f].triangles.size());
+      facets_[f].ball_known.resize(facets_[f].triangles.size(), 0);
       for (std::size_t a = 0; a < facets_[f].triangles.size(); a += piece)
         work.push_back({f, a, std::min(facets_[f].triangles.size(), a + piece)});
     }
@@ -1395,7 +1415,8 @@ class state3 : public state<3> {
       box.lo = box.hi = p[S.triangles[w.a][0]];
       for (std::size_t t = w.a; t < w.b; ++t) {
         const auto& T = S.triangles[t];
-        const auto [cc, r] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]);
+        if (!S.ball_known[t]) S.ball[t] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]), S.ball_known[t] = 1;
+        const auto [cc, r] = S.ball[t];
         for (std::size_t a = 0; a < 3; ++a) box.lo[a] = std::min(box.lo[a], cc[a] - r), box.hi[a] = std::max(box.hi[a], cc[a] + r);
         auto key = T;
         if (!S.checked) std::sort(key.begin(), key.end());
@@ -2094,6 +2115,9 @@ class state3 : public state<3> {
     S.wrapped = std::move(vs);
     S.wrapped_boundary.clear();  // the next triangulation wraps the whole facet
     S.fresh.clear();
+    S.ball.assign(ts.size(), {});
+    S.ball_known.assign(ts.size(), 0);
+    S.circles.assign(ts.size(), {0, 0, std::numeric_limits<double>::quiet_NaN()});
     index_triangles(f);
   }
 

@@ -1,7 +1,9 @@
 #include "gsse/front/front_mesher.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <iterator>
 #include <type_traits>
 
@@ -200,6 +202,12 @@ std::optional<std::vector<std::array<vertex_id, 3>>> rewrap_cavity(const K& k, s
   at.reserve(change.added.size());
   for (vertex_id v : change.added) at.push_back(k.grid_coord(v));
   const point_grid<2> added(at, change.added);
+  coord added_lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  coord added_hi{-added_lo[0], -added_lo[1]};
+  for (const auto& q : at)
+    for (std::size_t a = 0; a < 2; ++a) added_lo[a] = std::min(added_lo[a], q[a]), added_hi[a] = std::max(added_hi[a], q[a]);
+  // the circles, kept by the caller across calls where it gives a cache of the right size
+  auto* circles = change.circles && change.circles->size() == prev.size() ? change.circles : nullptr;
   // dead: resting on a split edge, or an added point beats the apex of one of its faces (lies in
   // its perturbed circle, seen from inside), as gift_wrapper::reusable decides per face
   std::vector<char> dead(prev.size(), 0);
@@ -212,8 +220,18 @@ std::optional<std::vector<std::array<vertex_id, 3>>> rewrap_cavity(const K& k, s
     if (!d && !change.added.empty()) {
       coord cc;
       double r = 0;
-      if (!k.ball({c[1], c[2]}, c[0], cc, r)) {
+      bool round = true;
+      if (circles && !std::isnan((*circles)[t][2])) {
+        cc = {(*circles)[t][0], (*circles)[t][1]}, r = (*circles)[t][2];
+        round = r >= 0;
+      } else {
+        round = k.ball({c[1], c[2]}, c[0], cc, r);
+        if (circles) (*circles)[t] = round ? std::array<double, 3>{cc[0], cc[1], r} : std::array<double, 3>{0, 0, -1};
+      }
+      if (!round) {
         d = true;
+      } else if (cc[0] + r < added_lo[0] || cc[0] - r > added_hi[0] || cc[1] + r < added_lo[1] || cc[1] - r > added_hi[1]) {
+        // no added point near: the box of the added points misses the circle's
       } else {
         const coord lo{cc[0] - r, cc[1] - r}, hi{cc[0] + r, cc[1] + r};
         const double r2 = r * r;

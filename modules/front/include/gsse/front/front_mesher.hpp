@@ -66,6 +66,10 @@ struct facet_change {
   std::span<const std::array<vertex_id, 3>> previous;
   std::span<const vertex_id> added;
   std::span<const std::array<vertex_id, 2>> old_boundary;
+  /// Optional: the circles of `previous` in the kernel's coordinates (centre u, v, radius), by
+  /// place, kept by the caller across calls; a NaN radius is unknown (computed here and stored),
+  /// a negative one no circle (a degenerate triangle). Ignored unless its size is previous's.
+  std::vector<std::array<double, 3>>* circles = nullptr;
 };
 
 /// Triangles of a planar facet of 3D points: edges with the facet on their left in the projection
