@@ -11,6 +11,7 @@
 #include <span>
 #include <stdexcept>
 #include <tuple>
+#include <type_traits>
 #include <unordered_map>
 
 #include "gsse/container/key_set.hpp"
@@ -560,6 +561,18 @@ face_t<D> key_of(face_t<D> f) {
   return f;
 }
 
+__extension__ typedef unsigned __int128 uint128;
+/// A face key (sorted ids) as one integer whose order is the keys' lexicographic order: sorting
+/// by it compares two machine words, not arrays element by element.
+template <std::size_t D>
+using packed_key = std::conditional_t<D == 2, std::uint64_t, uint128>;
+template <std::size_t D>
+packed_key<D> pack(const face_t<D>& key) {
+  packed_key<D> x = 0;
+  for (vertex_id v : key) x = (x << 32) | v;
+  return x;
+}
+
 /// The points [first, end) of `p` in a point grid (nested where they crowd: new points gather
 /// where the refinement works), for "which of them lie near this box or ball". Doubles select
 /// candidates; exact predicates decide.
@@ -708,10 +721,10 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     gone_faces.insert(gone_faces.end(), gone_in[i].begin(), gone_in[i].end());
     came_faces.insert(came_faces.end(), came_in[i].begin(), came_in[i].end());
   }
-  std::vector<face_t<D>> gone;  // sorted keys
+  std::vector<packed_key<D>> gone;  // sorted keys
   std::vector<char> on_gone(p.size(), 0);
   for (std::size_t f : gone_faces) {
-    gone.push_back(key_of<D>(b0.faces[f]));
+    gone.push_back(pack<D>(key_of<D>(b0.faces[f])));
     for (auto v : b0.faces[f]) on_gone[v] = 1;
   }
   std::sort(gone.begin(), gone.end());
@@ -806,7 +819,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         for (auto v : c) marked += on_gone[v];
         if (marked >= D)
           for (const auto& g : faces_into<D>(c))
-            if (std::binary_search(gone.begin(), gone.end(), key_of<D>(g))) out = 1;
+            if (std::binary_search(gone.begin(), gone.end(), pack<D>(key_of<D>(g)))) out = 1;
         if (out || p.size() == n0) continue;
         cell_ball<D> own;
         const auto& ball = ball_of(ch.region, i, own);
@@ -888,19 +901,20 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     auto& W = by_region[r];
     // the faces of the dead cells, by key: a face met twice (by two dead cells, facing opposite
     // ways) is inside the cavity, once is on its boundary
-    std::vector<std::pair<face_t<D>, face_t<D>>> met;  // (key, face facing into the dead cell)
+    std::vector<std::pair<packed_key<D>, face_t<D>>> met;  // (key, face facing into the dead cell)
     for (std::size_t i = 0; i < cells[r].size(); ++i) {
       if (!dead[r][i]) continue;
       ++W.removed;
-      for (const auto& g : faces_into<D>(cells[r][i])) met.push_back({key_of<D>(g), g});
+      for (const auto& g : faces_into<D>(cells[r][i])) met.push_back({pack<D>(key_of<D>(g)), g});
     }
-    std::sort(met.begin(), met.end());
+    // by key only: within a key (a face met twice) the order is not read
+    std::sort(met.begin(), met.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     std::vector<std::pair<face_t<D>, face_t<D>>> open;  // sorted by key
     for (std::size_t i = 0; i < met.size();) {
       std::size_t j = i + 1;
       while (j < met.size() && met[j].first == met[i].first) ++j;
       if (j - i == 1) {
-        open.push_back(met[i]);
+        open.push_back({key_of<D>(met[i].second), met[i].second});
       } else if (j - i > 2 || parity(met[i].second) == parity(met[i + 1].second)) {
         W.ok = false;  // two dead cells on one side of a face
         return;
