@@ -747,6 +747,10 @@ struct facet_state {
     double inv = 1;
     long nx = 0, ny = 0;
     std::vector<std::uint32_t> start, items;
+    // places whose triangle changed since the cells were filled, ascending (a few, after local
+    // re-wraps; the cells are filled again beyond 64): searched besides the cells. A cell may
+    // still list such a place: the triangle there now is tested, so it is only a candidate more
+    std::vector<std::uint32_t> extra;
   } cells;
   std::vector<vertex_id> wrapped;                                  // sorted vertices when triangulated
   std::vector<std::array<vertex_id, 2>> wrapped_boundary;          // the boundary edges then
@@ -1133,17 +1137,31 @@ class state3 : public state<3> {
       }
       S.checked = false;
     }
-    // the per-place caches: a place whose triangle changed (or is new) is unknown
+    // the per-place caches: a place whose triangle changed (or is new) is unknown; the triangle
+    // cells are filled again only if places moved (a shorter list) or many changed
     {
       const std::size_t n = S.triangles.size(), kept = std::min(previous.size(), n);
       const double unknown = std::numeric_limits<double>::quiet_NaN();
       S.ball.resize(n);
       S.ball_known.resize(n, 0);
       S.circles.resize(n, {0, 0, unknown});
+      constexpr std::size_t extra_limit = 64;
+      auto& C = S.cells;
+      bool refill = C.start.empty() || n < previous.size();
+      std::vector<std::uint32_t> extra;
       for (std::size_t t = 0; t < n; ++t)
-        if (t >= kept || S.triangles[t] != previous[t]) S.ball_known[t] = 0, S.circles[t] = {0, 0, unknown};
+        if (t >= kept || S.triangles[t] != previous[t]) {
+          S.ball_known[t] = 0, S.circles[t] = {0, 0, unknown};
+          if (!refill && extra.size() < extra_limit + 1) extra.push_back(static_cast<std::uint32_t>(t));
+        }
+      if (!refill) {
+        std::vector<std::uint32_t> all;
+        std::set_union(C.extra.begin(), C.extra.end(), extra.begin(), extra.end(), std::back_inserter(all));
+        refill = all.size() > extra_limit;
+        C.extra = std::move(all);
+      }
+      if (refill) index_triangles(f);
     }
-    index_triangles(f);
     S.wrapped = std::move(vs);
     S.wrapped_boundary = std::move(b);
   }
@@ -1307,9 +1325,22 @@ class state3 : public state<3> {
     const double x = (pq[0] - C.lo[0]) * C.inv, y = (pq[1] - C.lo[1]) * C.inv;
     if (!(x >= 0 && y >= 0 && x < static_cast<double>(C.nx) + 1 && y < static_cast<double>(C.ny) + 1)) return -1;
     const auto c = static_cast<std::size_t>(std::min(static_cast<long>(y), C.ny - 1) * C.nx + std::min(static_cast<long>(x), C.nx - 1));
+    // the first place holding q, as cells filled now would list it (all triangles holding q are
+    // filed under its cell, in order of place)
+    long found = -1;
     for (auto k = C.start[c]; k < C.start[c + 1]; ++k)
-      if (inside(C.items[k])) return static_cast<long>(C.items[k]);
-    return -1;
+      if (inside(C.items[k])) {
+        found = static_cast<long>(C.items[k]);
+        break;
+      }
+    for (auto t : C.extra) {
+      if (found >= 0 && static_cast<long>(t) >= found) break;
+      if (inside(t)) {
+        found = static_cast<long>(t);
+        break;
+      }
+    }
+    return found;
   }
 
   /// A subsegment of facet f whose diametral ball holds q strictly: (edge, index) or none.
@@ -1533,6 +1564,12 @@ class state3 : public state<3> {
     const auto c = static_cast<std::size_t>(cy * C.nx + cx);
     for (auto k = C.start[c]; k < C.start[c + 1]; ++k) {
       const auto t2 = C.items[k];
+      if (t2 == t) continue;
+      const auto& T = S.triangles[t2];
+      const bool has_u = T[0] == u || T[1] == u || T[2] == u, has_v = T[0] == v || T[1] == v || T[2] == v;
+      if (has_u && has_v) return static_cast<long>(t2);
+    }
+    for (const auto t2 : C.extra) {
       if (t2 == t) continue;
       const auto& T = S.triangles[t2];
       const bool has_u = T[0] == u || T[1] == u || T[2] == u, has_v = T[0] == v || T[1] == v || T[2] == v;
