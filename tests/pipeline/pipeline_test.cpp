@@ -6,6 +6,7 @@
 #include <numbers>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 #include "gsse/io/node_ele.hpp"
@@ -203,4 +204,73 @@ BOOST_AUTO_TEST_CASE(closed_surface_becomes_one_named_segment) {
   BOOST_TEST_REQUIRE(d.segments().size() == 1u);
   BOOST_TEST(d.segments()[0].name() == "unit_cube");
   BOOST_TEST(d.segments()[0].number() == 1);
+}
+
+BOOST_AUTO_TEST_CASE(lattice_points_stay_in_the_segments) {
+  // A hollow cube (a hole inside) and a second cube across a gap of 4 h, turned off the axes: the
+  // lattice points are located once per connected set of clear neighbours, so a set in the hole
+  // or in the gap must come out as outside, and the segments' sets as inside. Checked against the
+  // boxes themselves (in the unrotated frame) and the expected count of a BCC lattice of
+  // neighbour distance h over the volume at least h/2 from the faces.
+  const double h = 0.05;
+  const double c = std::cos(0.3), s = std::sin(0.3), c2 = std::cos(0.2), s2 = std::sin(0.2);
+  auto turn = [&](point3 x) {  // about z, then about x
+    x = {c * x[0] - s * x[1], s * x[0] + c * x[1], x[2]};
+    return point3{x[0], c2 * x[1] - s2 * x[2], s2 * x[1] + c2 * x[2]};
+  };
+  auto back = [&](point3 x) {
+    x = {x[0], c2 * x[1] + s2 * x[2], -s2 * x[1] + c2 * x[2]};
+    return point3{c * x[0] + s * x[1], -s * x[0] + c * x[1], x[2]};
+  };
+  std::ostringstream poly;
+  const std::array<std::array<double, 2>, 3> boxes[3] = {
+      {{{0, 1}, {0, 1}, {0, 1}}}, {{{0.35, 0.65}, {0.35, 0.65}, {0.35, 0.65}}}, {{{1.2, 2.2}, {0, 1}, {0, 1}}}};
+  poly << "24 3 0 0\n";
+  int id = 1;
+  for (const auto& B : boxes)
+    for (int k = 0; k < 8; ++k) {
+      const point3 x = turn({B[0][k & 1], B[1][(k >> 1) & 1], B[2][(k >> 2) & 1]});
+      poly << id++ << ' ' << std::setprecision(17) << x[0] << ' ' << x[1] << ' ' << x[2] << '\n';
+    }
+  poly << "18 1\n";
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (int b = 0; b < 3; ++b)
+    for (const auto& q : quads) poly << "1 0 " << b + 1 << "\n4 " << 8 * b + q[0] + 1 << ' ' << 8 * b + q[1] + 1 << ' ' << 8 * b + q[2] + 1 << ' ' << 8 * b + q[3] + 1 << '\n';
+  const point3 hole = turn({0.5, 0.5, 0.5}), r1 = turn({0.1, 0.1, 0.1}), r2 = turn({1.7, 0.5, 0.5});
+  poly << "1\n1 " << std::setprecision(17) << hole[0] << ' ' << hole[1] << ' ' << hole[2] << '\n';
+  poly << "2\n1 " << r1[0] << ' ' << r1[1] << ' ' << r1[2] << " 1 -1\n2 " << r2[0] << ' ' << r2[1] << ' ' << r2[2] << " 2 -1\n";
+  const auto path = (std::filesystem::temp_directory_path() / "gsse_lattice_sets.poly").string();
+  std::ofstream(path) << poly.str();
+  const auto p = io::read_tetgen_poly(path);
+  conformer::options co;
+  co.size = h;
+  std::size_t dropped = 0;
+  const auto volume = pl::size_points<3>{}(p, h, {}, dropped, co);
+  auto in_box = [](const point3& x, const std::array<std::array<double, 2>, 3>& B, double pad) {
+    for (std::size_t k = 0; k < 3; ++k)
+      if (x[k] < B[k][0] + pad || x[k] > B[k][1] - pad) return false;
+    return true;
+  };
+  auto near_box = [](const point3& x, const std::array<std::array<double, 2>, 3>& B, double pad) {  // within pad of B
+    double d2 = 0;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double o = std::max({B[k][0] - x[k], 0.0, x[k] - B[k][1]});
+      d2 += o * o;
+    }
+    return d2 < pad * pad;
+  };
+  std::size_t wrong = 0, first = 0, second = 0;
+  for (const auto& q : volume) {
+    const point3 x = back(q);
+    // in the hollow cube's wall or the second cube, at least h/2 (less rounding) from their faces
+    const bool wall = in_box(x, boxes[0], 0.5 * h - 1e-9) && !near_box(x, boxes[1], 0.5 * h - 1e-9);
+    const bool other = in_box(x, boxes[2], 0.5 * h - 1e-9);
+    wrong += !(wall || other);
+    first += wall, second += other;
+  }
+  BOOST_TEST(wrong == 0u);
+  const double a = 2 * h / std::sqrt(3.0), density = 2 / (a * a * a);
+  const double v1 = std::pow(1 - h, 3) - std::pow(0.3 + h, 3), v2 = std::pow(1 - h, 3);
+  BOOST_TEST(std::abs(static_cast<double>(first) - density * v1) < 0.05 * density * v1, first << " vs " << density * v1);
+  BOOST_TEST(std::abs(static_cast<double>(second) - density * v2) < 0.05 * density * v2, second << " vs " << density * v2);
 }
