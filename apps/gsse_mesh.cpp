@@ -195,7 +195,7 @@ int run(const gsse::plc<D>& p, const args& a) {
   if (r.quality && !r.refinement.failure.empty())
     std::fprintf(stderr, "gsse-mesh: warning: quality refinement stopped by a failed %s; the mesh is the round before, %zu elements above the bound\n",
                  r.refinement.failure.c_str(), r.refinement.bad_left);
-  const auto q = (!a.quiet || !a.stats.empty()) ? gsse::pipeline::measure(d) : gsse::pipeline::quality{};
+  const auto q = (!a.quiet || !a.stats.empty()) ? gsse::pipeline::measure(d, a.threads) : gsse::pipeline::quality{};
   if (!a.quiet) {
     std::printf("%s: %zuD, %zu points (%zu volume, %zu dropped outside, %zu boundary Steiner), %zu segments\n",
                 p.source.c_str(), D, d.points().size(), r.volume_points, r.dropped_points, r.steiner, d.segments().size());

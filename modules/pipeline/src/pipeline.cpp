@@ -15,6 +15,8 @@
 #include <numeric>
 #include <memory>
 #include <set>
+#include <span>
+#include <type_traits>
 
 #include "gsse/container/union_find.hpp"
 #include "gsse/front/front_mesher.hpp"
@@ -781,18 +783,34 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
 }
 
 template <std::size_t D>
-quality measure(const domain<D>& d) {
-  quality q;
-  std::vector<double> ratios;
-  q.min_angle = 180;
+quality measure(const domain<D>& d, unsigned threads) {
   const auto& p = d.points();
   const double rad = 180 / std::numbers::pi;
-  for (const auto& s : d.segments())
-    for (const auto& c : s.cell_data()) {
-      double shortest = 1e300, lo = 180, hi = 0;
+  // the cells in pieces, measured in parallel, each piece its own tallies (merged in order: the
+  // sums, minima and maxima do not depend on it, and the ratios are sorted)
+  using cell = typename std::decay_t<decltype(d.segments()[0].cell_data())>::value_type;
+  constexpr std::size_t piece_size = 1 << 13;
+  std::vector<std::span<const cell>> pieces;
+  for (const auto& s : d.segments()) {
+    const auto cs = s.cell_data();
+    for (std::size_t a = 0; a < cs.size(); a += piece_size) pieces.push_back(cs.subspan(a, std::min(piece_size, cs.size() - a)));
+  }
+  std::vector<quality> part(pieces.size());
+  std::vector<std::vector<double>> part_ratios(pieces.size());
+  std::vector<std::size_t> ids(pieces.size());
+  std::iota(ids.begin(), ids.end(), std::size_t{0});
+  for_each(execution::par(threads), ids, [&](std::size_t k) {
+    quality& q = part[k];
+    q.min_angle = 180;
+    auto& ratios = part_ratios[k];
+    ratios.reserve(pieces[k].size());
+    for (const auto& c : pieces[k]) {
+      double shortest = 1e300;
       for (std::size_t i = 0; i <= D; ++i)
         for (std::size_t j = i + 1; j <= D; ++j) shortest = std::min(shortest, distance(p[c[i]], p[c[j]]));
       double r;
+      // the element's angles by their cosines: the smallest angle is the arccosine of the largest
+      double most = -1, least = 1;
       if constexpr (D == 2) {
         const double a = distance(p[c[1]], p[c[2]]), b = distance(p[c[0]], p[c[2]]), e = distance(p[c[0]], p[c[1]]);
         const point2 u = p[c[1]] - p[c[0]], v = p[c[2]] - p[c[0]];
@@ -800,8 +818,8 @@ quality measure(const domain<D>& d) {
         r = a * b * e / (4 * area);
         for (std::size_t i = 0; i < 3; ++i) {
           const point2 x = p[c[(i + 1) % 3]] - p[c[i]], y = p[c[(i + 2) % 3]] - p[c[i]];
-          const double ang = std::acos(std::clamp(dot(x, y) / std::sqrt(dot(x, x) * dot(y, y)), -1.0, 1.0)) * rad;
-          lo = std::min(lo, ang), hi = std::max(hi, ang);
+          const double cosv = std::clamp(dot(x, y) / std::sqrt(dot(x, x) * dot(y, y)), -1.0, 1.0);
+          most = std::max(most, cosv), least = std::min(least, cosv);
         }
       } else {
         const point3 u = p[c[1]] - p[c[0]], v = p[c[2]] - p[c[0]], w = p[c[3]] - p[c[0]];
@@ -811,15 +829,19 @@ quality measure(const domain<D>& d) {
         // dihedral angle at edge (i,j): between the faces opposite k and l
         for (std::size_t i = 0; i < 4; ++i)
           for (std::size_t j = i + 1; j < 4; ++j) {
-            std::size_t k = 0;
-            while (k == i || k == j) ++k;
-            std::size_t l = 6 - i - j - k;
+            std::size_t k2 = 0;
+            while (k2 == i || k2 == j) ++k2;
+            std::size_t l = 6 - i - j - k2;
             const point3 e = p[c[j]] - p[c[i]];
-            const point3 n1 = cross(e, p[c[k]] - p[c[i]]), n2 = cross(e, p[c[l]] - p[c[i]]);
-            const double ang = std::acos(std::clamp(dot(n1, n2) / std::sqrt(dot(n1, n1) * dot(n2, n2)), -1.0, 1.0)) * rad;
-            lo = std::min(lo, ang), hi = std::max(hi, ang);
+            const point3 n1 = cross(e, p[c[k2]] - p[c[i]]), n2 = cross(e, p[c[l]] - p[c[i]]);
+            const double cosv = std::clamp(dot(n1, n2) / std::sqrt(dot(n1, n1) * dot(n2, n2)), -1.0, 1.0);
+            if (!(cosv == cosv)) {  // NaN (a degenerate element): as the angle test saw it, ignored
+              continue;
+            }
+            most = std::max(most, cosv), least = std::min(least, cosv);
           }
       }
+      const double lo = std::min(180.0, std::acos(most) * rad), hi = std::max(0.0, std::acos(least) * rad);
       q.min_angle = std::min(q.min_angle, lo), q.max_angle = std::max(q.max_angle, hi);
       q.below5 += lo < 5, q.below10 += lo < 10, q.above170 += hi > 170;
       ++q.angle_histogram[std::min<std::size_t>(6, static_cast<std::size_t>(std::max(0.0, lo) / 10))];
@@ -829,16 +851,31 @@ quality measure(const domain<D>& d) {
       ++q.ratio_histogram[bin];
       ratios.push_back(ratio);
     }
+  }, [&](std::size_t k) { return static_cast<double>(pieces[k].size()); });
+  quality q;
+  q.min_angle = 180;
+  std::vector<double> ratios;
+  for (std::size_t k = 0; k < part.size(); ++k) {
+    const quality& x = part[k];
+    q.min_angle = std::min(q.min_angle, x.min_angle), q.max_angle = std::max(q.max_angle, x.max_angle);
+    q.below5 += x.below5, q.below10 += x.below10, q.above170 += x.above170;
+    for (std::size_t i = 0; i < q.angle_histogram.size(); ++i) q.angle_histogram[i] += x.angle_histogram[i];
+    for (std::size_t i = 0; i < q.ratio_histogram.size(); ++i) q.ratio_histogram[i] += x.ratio_histogram[i];
+    ratios.insert(ratios.end(), part_ratios[k].begin(), part_ratios[k].end());
+  }
   q.elements = ratios.size();
   if (!ratios.empty()) {
-    std::sort(ratios.begin(), ratios.end());
-    q.min_ratio = ratios.front(), q.max_ratio = ratios.back(), q.median_ratio = ratios[ratios.size() / 2];
+    // the median as a full sort would place it; the extremes
+    const auto [lo, hi] = std::minmax_element(ratios.begin(), ratios.end());
+    q.min_ratio = *lo, q.max_ratio = *hi;
+    std::nth_element(ratios.begin(), ratios.begin() + static_cast<long>(ratios.size() / 2), ratios.end());
+    q.median_ratio = ratios[ratios.size() / 2];
   }
   return q;
 }
 
-template quality measure<2>(const domain<2>&);
-template quality measure<3>(const domain<3>&);
+template quality measure<2>(const domain<2>&, unsigned);
+template quality measure<3>(const domain<3>&, unsigned);
 template struct size_points<2>;
 template struct size_points<3>;
 template struct mesh_segments<2>;

@@ -124,8 +124,9 @@ struct quality {
   // tetrahedron's dihedral angle is 70.5, the equilateral triangle's 60)
   std::array<std::size_t, 7> angle_histogram{};
 };
+/// The quality of every element of d, measured on `threads` threads (the same result for any).
 template <std::size_t D>
-quality measure(const domain<D>& d);
+quality measure(const domain<D>& d, unsigned threads = 1);
 
 /// All stages in order.
 template <std::size_t D>
