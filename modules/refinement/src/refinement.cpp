@@ -24,6 +24,7 @@
 #include "gsse/geometry/predicates.hpp"
 #include "gsse/sizing/box_tree.hpp"
 #include "gsse/traversal/for_each.hpp"
+#include "gsse/traversal/parallel_sort.hpp"
 
 namespace gsse::refinement {
 
@@ -511,18 +512,20 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   out.bad = out.excepted + shaped;
   out.large = all.size() - shaped;  // the excepted are not in `all`
   auto at = [&](const ref& x) -> const candidate<D>& { return found[x.chunk][x.index]; };
-  std::sort(all.begin(), all.end(), [&](const ref& x, const ref& y) {
+  // (candidates equal in both keys share their circumcentre, and so their encroached faces: their
+  // order among themselves changes nothing below)
+  gsse::stable_sort(execution::par(threads), all.begin(), all.end(), [&](const ref& x, const ref& y) {
     const auto &a = at(x), &c = at(y);
     if (a.r != c.r) return a.r > c.r;
     return lex_less(a.c, c.c);
   });
-  std::set<std::size_t> split;
+  std::vector<std::size_t> split;
   accepted_points<D> taken(p.empty() ? point<D>{} : p[0], levels);
   std::vector<char> may_leave;  // per accepted point
   for (const auto& x : all) {
     const auto& c = at(x);
     if (c.count > 0) {
-      for (std::uint32_t j = 0; j < c.count; ++j) split.insert(faces[x.chunk][c.first + j]);
+      for (std::uint32_t j = 0; j < c.count; ++j) split.push_back(faces[x.chunk][c.first + j]);
       continue;
     }
     if (taken.any_within(c.c, c.r)) continue;
@@ -546,6 +549,8 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
     out.outside = out.add.size() - inside.size();
     out.add = std::move(inside);
   }
+  std::sort(split.begin(), split.end());
+  split.erase(std::unique(split.begin(), split.end()), split.end());
   out.split.assign(split.begin(), split.end());
   return out;
 }
