@@ -1562,19 +1562,15 @@ class state3 : public state<3> {
     const long cx = std::clamp(static_cast<long>(std::max(x, 0.0)), 0l, C.nx - 1);
     const long cy = std::clamp(static_cast<long>(std::max(y, 0.0)), 0l, C.ny - 1);
     const auto c = static_cast<std::size_t>(cy * C.nx + cx);
-    for (auto k = C.start[c]; k < C.start[c + 1]; ++k) {
-      const auto t2 = C.items[k];
-      if (t2 == t) continue;
+    auto on_edge = [&](std::uint32_t t2) {
+      if (t2 == t) return false;
       const auto& T = S.triangles[t2];
-      const bool has_u = T[0] == u || T[1] == u || T[2] == u, has_v = T[0] == v || T[1] == v || T[2] == v;
-      if (has_u && has_v) return static_cast<long>(t2);
-    }
-    for (const auto t2 : C.extra) {
-      if (t2 == t) continue;
-      const auto& T = S.triangles[t2];
-      const bool has_u = T[0] == u || T[1] == u || T[2] == u, has_v = T[0] == v || T[1] == v || T[2] == v;
-      if (has_u && has_v) return static_cast<long>(t2);
-    }
+      return (T[0] == u || T[1] == u || T[2] == u) && (T[0] == v || T[1] == v || T[2] == v);
+    };
+    for (auto k = C.start[c]; k < C.start[c + 1]; ++k)
+      if (on_edge(C.items[k])) return static_cast<long>(C.items[k]);
+    for (const auto t2 : C.extra)
+      if (on_edge(t2)) return static_cast<long>(t2);
     return -1;
   }
 

@@ -1,5 +1,6 @@
 #include "gsse/pipeline/pipeline.hpp"
 #include "gsse/geometry/circumcentre.hpp"
+#include "gsse/geometry/dihedral.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -787,7 +788,7 @@ quality measure(const domain<D>& d, unsigned threads) {
   const auto& p = d.points();
   const double rad = 180 / std::numbers::pi;
   // the cells in pieces, measured in parallel, each piece its own tallies (merged in order: the
-  // sums, minima and maxima do not depend on it, and the ratios are sorted)
+  // sums, minima, maxima and the median do not depend on it)
   using cell = typename std::decay_t<decltype(d.segments()[0].cell_data())>::value_type;
   constexpr std::size_t piece_size = 1 << 13;
   std::vector<std::span<const cell>> pieces;
@@ -826,20 +827,7 @@ quality measure(const domain<D>& d, unsigned threads) {
         double det;
         const point3 cc = geometry::tetrahedron_circumcentre_offset(u, v, w, det);
         r = std::sqrt(dot(cc, cc));
-        // dihedral angle at edge (i,j): between the faces opposite k and l
-        for (std::size_t i = 0; i < 4; ++i)
-          for (std::size_t j = i + 1; j < 4; ++j) {
-            std::size_t k2 = 0;
-            while (k2 == i || k2 == j) ++k2;
-            std::size_t l = 6 - i - j - k2;
-            const point3 e = p[c[j]] - p[c[i]];
-            const point3 n1 = cross(e, p[c[k2]] - p[c[i]]), n2 = cross(e, p[c[l]] - p[c[i]]);
-            const double cosv = std::clamp(dot(n1, n2) / std::sqrt(dot(n1, n1) * dot(n2, n2)), -1.0, 1.0);
-            if (!(cosv == cosv)) {  // NaN (a degenerate element): as the angle test saw it, ignored
-              continue;
-            }
-            most = std::max(most, cosv), least = std::min(least, cosv);
-          }
+        std::tie(most, least) = geometry::dihedral_cosines(p, c);
       }
       const double lo = std::min(180.0, std::acos(most) * rad), hi = std::max(0.0, std::acos(least) * rad);
       q.min_angle = std::min(q.min_angle, lo), q.max_angle = std::max(q.max_angle, hi);

@@ -18,6 +18,7 @@
 #include "gsse/container/union_find.hpp"
 #include "gsse/front/front_mesher.hpp"
 #include "gsse/geometry/circumcentre.hpp"
+#include "gsse/geometry/dihedral.hpp"
 #include "gsse/geometry/exact_ball.hpp"
 #include "gsse/geometry/hash_grid.hpp"
 #include "gsse/geometry/point_grid.hpp"
@@ -190,22 +191,6 @@ std::uint64_t morton_code(const point<D>& x, const point<D>& lo, const point<D>&
 
 }  // namespace
 
-/// The largest and smallest cosine of the six dihedral angles of tetrahedron c (doubles: a
-/// shape measure, no topology): an angle below A degrees has a cosine above cos A.
-std::pair<double, double> dihedral_cosines(const std::vector<point3>& p, const std::array<vertex_id, 4>& c) {
-  double most = -1, least = 1;
-  for (std::size_t i = 0; i < 4; ++i)
-    for (std::size_t j = i + 1; j < 4; ++j) {
-      std::size_t k = 0;
-      while (k == i || k == j) ++k;
-      const std::size_t l = 6 - i - j - k;
-      const point3 e = p[c[j]] - p[c[i]];
-      const point3 n1 = cross(e, p[c[k]] - p[c[i]]), n2 = cross(e, p[c[l]] - p[c[i]]);
-      const double cosv = std::clamp(dot(n1, n2) / std::sqrt(dot(n1, n1) * dot(n2, n2)), -1.0, 1.0);
-      most = std::max(most, cosv), least = std::min(least, cosv);
-    }
-  return {most, least};
-}
 
 template <std::size_t D>
 plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary<D>& b, double bound, unsigned threads,
@@ -388,7 +373,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       if constexpr (D == 3) {
         if (!bad_shape && sliver > 0) {
           // an angle below `sliver` or above 180 - 2 sliver degrees, by cosines (no acos per cell)
-          const auto [most, least] = dihedral_cosines(p, c);
+          const auto [most, least] = geometry::dihedral_cosines(p, c);
           bad_shape = most > cos_sliver || least < cos_flat;
         }
       }
