@@ -1518,11 +1518,16 @@ class state3 : public state<3> {
   }
 
   /// Whether the tetrahedron abcd (not exactly flat) has a perturbed-empty circumsphere, i.e. is
-  /// a cell of the Delaunay tetrahedralization of all points.
-  bool delaunay_cell(vertex_id a, vertex_id b, vertex_id c, vertex_id d, std::uint32_t facet) const {
+  /// a cell of the Delaunay tetrahedralization of all points. o = orient3d(a, b, c, d), which
+  /// the caller has (exact, and for four nearly coplanar points costly).
+  bool delaunay_cell(vertex_id a, vertex_id b, vertex_id c, vertex_id d, std::uint32_t facet, int o) const {
     const auto& p = out_.points;
-    const int o = geometry::orient3d(p[a], p[b], p[c], p[d]);
     if (o == 0) return false;
+    // d's side of the plane abc, in doubles, for the search below only: the sphere through four
+    // nearly coplanar points bulges to that side (unless they are nearly cocircular)
+    const point3 n = cross(p[b] - p[a], p[c] - p[a]);
+    const point3 pa = p[a];
+    const double nn = std::sqrt(dot(n, n));
     if (o < 0) std::swap(a, b);
     auto outside = [&](vertex_id y) {
       return y == a || y == b || y == c || y == d ||
@@ -1538,7 +1543,15 @@ class state3 : public state<3> {
     bool held = false;
     // (skipping the facet's own points: they lie near the sphere's rim, outside it, where the
     // test is least decided and most often exact; the exact scan below reads them too)
-    auto off_facet = [&](vertex_id y) { return !(out_.homes[y].kind == home::facet && out_.homes[y].id == facet); };
+    // (only the points clearly on the side the sphere bulges to: one elsewhere, or near the plane
+    // (another facet in it, an edge of it), is nearly never inside, and the test of one near the
+    // rim is least decided)
+    auto off_facet = [&](vertex_id y) {
+      if (out_.homes[y].kind == home::facet && out_.homes[y].id == facet) return false;
+      const point3 e = p[y] - pa;
+      const double h = dot(n, e);
+      return (o > 0 ? h : -h) > 1e-6 * nn * std::sqrt(dot(e, e));
+    };
     grid_.finest().visit_rings(g, box_lo_, box_hi_, [&](vertex_id y) { return !off_facet(y) || (++seen, !(held = !outside(y))); },
                       [&] { return ++ring > 2 && (seen >= 64 || ring > 6); });
     if (held) return false;
@@ -1615,7 +1628,9 @@ class state3 : public state<3> {
     std::array<vertex_id, 4> id{u, v, w, z};
     std::sort(id.begin(), id.end());
     if (std::binary_search(S.not_flat.begin(), S.not_flat.end(), id)) return;
-    if (delaunay_cell(u, v, w, z, f))
+    // orient3d(u, v, w, z) from o: (u, v, w) is T's vertices, in T's cyclic order or not
+    const std::size_t iu = T[0] == u ? 0 : T[1] == u ? 1 : 2, iv = T[0] == v ? 0 : T[1] == v ? 1 : 2;
+    if (delaunay_cell(u, v, w, z, f, (iv + 3 - iu) % 3 == 1 ? o : -o))
       mine.push_back({f, t2, no_vertex, true});
     else
       not_flat.push_back(id);
