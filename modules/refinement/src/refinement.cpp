@@ -176,6 +176,28 @@ class accepted_points {
 
 /// The Morton code of x's cell in a 2^bits lattice over the box [lo, hi] (bits * D <= 64): the
 /// lattice coordinates' bits interleaved, so that nearby codes are nearby cells.
+/// q's bits spread to every D-th place (bit i to bit D i), q < 2^(64 / D).
+template <std::size_t D>
+std::uint64_t spread_bits(std::uint64_t q) {
+  static_assert(D == 2 || D == 3);
+  if constexpr (D == 2) {
+    q &= 0xffffffffull;
+    q = (q | q << 16) & 0x0000ffff0000ffffull;
+    q = (q | q << 8) & 0x00ff00ff00ff00ffull;
+    q = (q | q << 4) & 0x0f0f0f0f0f0f0f0full;
+    q = (q | q << 2) & 0x3333333333333333ull;
+    q = (q | q << 1) & 0x5555555555555555ull;
+  } else {
+    q &= 0x1fffffull;
+    q = (q | q << 32) & 0x001f00000000ffffull;
+    q = (q | q << 16) & 0x001f0000ff0000ffull;
+    q = (q | q << 8) & 0x100f00f00f00f00full;
+    q = (q | q << 4) & 0x10c30c30c30c30c3ull;
+    q = (q | q << 2) & 0x1249249249249249ull;
+  }
+  return q;
+}
+
 template <std::size_t D>
 std::uint64_t morton_code(const point<D>& x, const point<D>& lo, const point<D>& hi, int bits) {
   const double cells = std::ldexp(1.0, bits);
@@ -184,7 +206,7 @@ std::uint64_t morton_code(const point<D>& x, const point<D>& lo, const point<D>&
     const double e = hi[k] - lo[k];
     const double t = e > 0 ? (x[k] - lo[k]) / e : 0;
     const auto q = static_cast<std::uint64_t>(std::clamp(t * cells, 0.0, cells - 1));
-    for (int bit = 0; bit < bits; ++bit) m |= ((q >> bit) & 1u) << (static_cast<std::size_t>(bit) * D + k);
+    m |= spread_bits<D>(q) << k;
   }
   return m;
 }
