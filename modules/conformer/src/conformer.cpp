@@ -1546,13 +1546,13 @@ class state3 : public state<3> {
     // (only the points clearly on the side the sphere bulges to: one elsewhere, or near the plane
     // (another facet in it, an edge of it), is nearly never inside, and the test of one near the
     // rim is least decided)
-    auto off_facet = [&](vertex_id y) {
+    auto worth_testing = [&](vertex_id y) {
       if (out_.homes[y].kind == home::facet && out_.homes[y].id == facet) return false;
       const point3 e = p[y] - pa;
       const double h = dot(n, e);
       return (o > 0 ? h : -h) > 1e-6 * nn * std::sqrt(dot(e, e));
     };
-    grid_.finest().visit_rings(g, box_lo_, box_hi_, [&](vertex_id y) { return !off_facet(y) || (++seen, !(held = !outside(y))); },
+    grid_.finest().visit_rings(g, box_lo_, box_hi_, [&](vertex_id y) { return !worth_testing(y) || (++seen, !(held = !outside(y))); },
                       [&] { return ++ring > 2 && (seen >= 64 || ring > 6); });
     if (held) return false;
     point3 cc;

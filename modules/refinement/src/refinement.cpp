@@ -174,30 +174,28 @@ class accepted_points {
   std::vector<point<D>> points_;
 };
 
-/// The Morton code of x's cell in a 2^bits lattice over the box [lo, hi] (bits * D <= 64): the
-/// lattice coordinates' bits interleaved, so that nearby codes are nearby cells.
-/// q's bits spread to every D-th place (bit i to bit D i), q < 2^(64 / D).
+/// q's bits spread to every D-th place (bit i to bit D i), q < 2^(64 / D): each step moves the
+/// upper half of every group of bits up by the shift and masks off what is not in place.
 template <std::size_t D>
 std::uint64_t spread_bits(std::uint64_t q) {
   static_assert(D == 2 || D == 3);
-  if constexpr (D == 2) {
-    q &= 0xffffffffull;
-    q = (q | q << 16) & 0x0000ffff0000ffffull;
-    q = (q | q << 8) & 0x00ff00ff00ff00ffull;
-    q = (q | q << 4) & 0x0f0f0f0f0f0f0f0full;
-    q = (q | q << 2) & 0x3333333333333333ull;
-    q = (q | q << 1) & 0x5555555555555555ull;
-  } else {
-    q &= 0x1fffffull;
-    q = (q | q << 32) & 0x001f00000000ffffull;
-    q = (q | q << 16) & 0x001f0000ff0000ffull;
-    q = (q | q << 8) & 0x100f00f00f00f00full;
-    q = (q | q << 4) & 0x10c30c30c30c30c3ull;
-    q = (q | q << 2) & 0x1249249249249249ull;
-  }
+  struct step {
+    int shift;
+    std::uint64_t mask;
+  };
+  static constexpr std::array<step, 5> steps2{{{16, 0x0000ffff0000ffffull}, {8, 0x00ff00ff00ff00ffull},
+                                                {4, 0x0f0f0f0f0f0f0f0full}, {2, 0x3333333333333333ull},
+                                                {1, 0x5555555555555555ull}}};
+  static constexpr std::array<step, 5> steps3{{{32, 0x001f00000000ffffull}, {16, 0x001f0000ff0000ffull},
+                                                {8, 0x100f00f00f00f00full}, {4, 0x10c30c30c30c30c3ull},
+                                                {2, 0x1249249249249249ull}}};
+  q &= D == 2 ? 0xffffffffull : 0x1fffffull;
+  for (const auto& [shift, mask] : D == 2 ? steps2 : steps3) q = (q | q << shift) & mask;
   return q;
 }
 
+/// The Morton code of x's cell in a 2^bits lattice over the box [lo, hi] (bits * D <= 64): the
+/// lattice coordinates' bits interleaved, so that nearby codes are nearby cells.
 template <std::size_t D>
 std::uint64_t morton_code(const point<D>& x, const point<D>& lo, const point<D>& hi, int bits) {
   const double cells = std::ldexp(1.0, bits);
@@ -212,7 +210,6 @@ std::uint64_t morton_code(const point<D>& x, const point<D>& lo, const point<D>&
 }
 
 }  // namespace
-
 
 template <std::size_t D>
 plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary<D>& b, double bound, unsigned threads,
@@ -558,7 +555,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   }
   std::sort(split.begin(), split.end());
   split.erase(std::unique(split.begin(), split.end()), split.end());
-  out.split.assign(split.begin(), split.end());
+  out.split = std::move(split);
   return out;
 }
 
