@@ -24,6 +24,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include "gsse/geometry/fixed_predicates.hpp"
 #include "gsse/geometry/point.hpp"
 
 namespace gsse::geometry {
@@ -42,7 +43,11 @@ inline const kernel& K() {
 inline int orient2d(const point2& a, const point2& b, const point2& c) {
   return static_cast<int>(detail::K().orientation_2_object()(detail::cg(a), detail::cg(b), detail::cg(c)));
 }
+/// orient3d, in_sphere and in_equatorial first try fixed_predicates.hpp (its own double filter, then fixed-width
+/// integers when the coordinate differences allow: exact zeros on lattices and axis-aligned
+/// facets), and CGAL's filtered predicate otherwise; the sign is the exact one either way.
 inline int orient3d(const point3& a, const point3& b, const point3& c, const point3& d) {
+  if (const int s = fixed::orient3d(a, b, c, d); s != fixed::undecided) return s;
   return static_cast<int>(
       detail::K().orientation_3_object()(detail::cg(a), detail::cg(b), detail::cg(c), detail::cg(d)));
 }
@@ -65,6 +70,7 @@ inline int in_circle(const point2& a, const point2& b, const point2& c, const po
                                                                          detail::cg(c), detail::cg(d)));
 }
 inline int in_sphere(const point3& a, const point3& b, const point3& c, const point3& d, const point3& e) {
+  if (const int s = fixed::in_sphere(a, b, c, d, e); s != fixed::undecided) return s;
   return static_cast<int>(detail::K().side_of_oriented_sphere_3_object()(
       detail::cg(a), detail::cg(b), detail::cg(c), detail::cg(d), detail::cg(e)));
 }
@@ -78,6 +84,7 @@ inline int in_diametral(const point3& a, const point3& b, const point3& p) {
       detail::K().side_of_bounded_sphere_3_object()(detail::cg(a), detail::cg(b), detail::cg(p)));
 }
 inline int in_equatorial(const point3& a, const point3& b, const point3& c, const point3& p) {
+  if (const int s = fixed::in_equatorial(a, b, c, p); s != fixed::undecided) return s;
   return static_cast<int>(detail::K().side_of_bounded_sphere_3_object()(detail::cg(a), detail::cg(b),
                                                                         detail::cg(c), detail::cg(p)));
 }
