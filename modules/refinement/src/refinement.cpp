@@ -1184,21 +1184,28 @@ void spatial_order(cells_by_region<D>& cells, const std::vector<point<D>>& p, un
   for (const auto& q : p)
     for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
   constexpr int bits = D == 2 ? 31 : 21;
-  std::vector<std::size_t> regions(cells.size());
-  std::iota(regions.begin(), regions.end(), std::size_t{0});
-  for_each(execution::par(threads), regions, [&](std::size_t r) {
-    auto& cs = cells[r];
+  // one region after another, each on every thread: one region (the substrate) usually holds most
+  // cells, and sorting it on one thread left the others idle. Keys are distinct (the index breaks
+  // ties), so the parallel stable sort gives std::sort's order for any thread count.
+  constexpr std::size_t chunk = 1 << 14;
+  for (auto& cs : cells) {
     std::vector<std::pair<std::uint64_t, std::uint32_t>> key(cs.size());
-    for (std::size_t i = 0; i < cs.size(); ++i) {
-      point<D> g{};
-      for (auto v : cs[i]) g = g + p[v];
-      key[i] = {morton_code<D>((1.0 / (D + 1)) * g, lo, hi, bits), static_cast<std::uint32_t>(i)};
-    }
-    std::sort(key.begin(), key.end());
+    std::vector<std::size_t> starts;
+    for (std::size_t a = 0; a < cs.size(); a += chunk) starts.push_back(a);
+    for_each(execution::par(threads), starts, [&](std::size_t a) {
+      for (std::size_t i = a; i < std::min(cs.size(), a + chunk); ++i) {
+        point<D> g{};
+        for (auto v : cs[i]) g = g + p[v];
+        key[i] = {morton_code<D>((1.0 / (D + 1)) * g, lo, hi, bits), static_cast<std::uint32_t>(i)};
+      }
+    });
+    gsse::stable_sort(execution::par(threads), key.begin(), key.end());
     std::vector<cell_t<D>> sorted(cs.size());
-    for (std::size_t i = 0; i < cs.size(); ++i) sorted[i] = cs[key[i].second];
+    for_each(execution::par(threads), starts, [&](std::size_t a) {
+      for (std::size_t i = a; i < std::min(cs.size(), a + chunk); ++i) sorted[i] = cs[key[i].second];
+    });
     cs = std::move(sorted);
-  }, [&](std::size_t r) { return static_cast<double>(cells[r].size()); });
+  }
 }
 }  // namespace
 
