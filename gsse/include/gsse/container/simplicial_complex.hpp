@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <numeric>
 #include <utility>
 #include <span>
@@ -87,8 +88,11 @@ class simplicial_complex {
     for_each(execution::par(threads), starts, [&](std::size_t a) { match_facets(a, std::min(nv, a + range)); });
   }
   void match_facets(std::size_t v0, std::size_t v1) {
+    // the facet's other vertices, sorted, as one integer (D <= 3: at most two 32-bit ids), so
+    // that the sort compares words; the order of a facet's two cells does not matter
+    static_assert(D >= 1 && D <= 3 && sizeof(vertex_id) <= 4);
     struct entry {
-      std::array<vertex_id, D - 1> rest;  // the facet's other vertices, sorted
+      std::uint64_t rest;
       cell_id c;
       int i;
     };
@@ -97,23 +101,37 @@ class simplicial_complex {
       around.clear();
       for (std::size_t k = vstart_[v]; k < vstart_[v + 1]; ++k) {
         const cell_id c = vcells_[k];
+        const auto& cell = cells_[c];
         for (int i = 0; i <= static_cast<int>(D); ++i) {
-          if (cells_[c][static_cast<std::size_t>(i)] == v) continue;  // facet i lacks v
-          entry e{{}, c, i};
+          if (cell[static_cast<std::size_t>(i)] == v) continue;  // facet i lacks v
+          std::array<vertex_id, D - 1> rest{};
           std::size_t m = 0;
           bool lowest = true;
           for (std::size_t j = 0; j <= D; ++j) {
-            const vertex_id w = cells_[c][j];
+            const vertex_id w = cell[j];
             if (static_cast<int>(j) == i || w == v) continue;
             lowest = lowest && w > v;
-            e.rest[m++] = w;
+            rest[m++] = w;
           }
           if (!lowest) continue;  // matched at its smallest vertex
-          std::sort(e.rest.begin(), e.rest.end());
-          around.push_back(e);
+          std::uint64_t key = 0;
+          if constexpr (D == 3) {
+            key = rest[0] < rest[1] ? (std::uint64_t{rest[0]} << 32 | rest[1]) : (std::uint64_t{rest[1]} << 32 | rest[0]);
+          } else if constexpr (D == 2) {
+            key = rest[0];
+          }
+          around.push_back({key, c, i});
         }
       }
-      std::sort(around.begin(), around.end(), [](const entry& a, const entry& b) { return a.rest < b.rest; });
+      // usually few entries (a vertex's star): insertion sort, else (a fan of thousands) std::sort
+      if (around.size() > 64)
+        std::sort(around.begin(), around.end(), [](const entry& a, const entry& b) { return a.rest < b.rest; });
+      for (std::size_t a = 1; a < around.size() && around.size() <= 64; ++a) {
+        const entry e = around[a];
+        std::size_t b = a;
+        for (; b > 0 && around[b - 1].rest > e.rest; --b) around[b] = around[b - 1];
+        around[b] = e;
+      }
       for (std::size_t k = 0; k + 1 < around.size();) {
         if (around[k].rest != around[k + 1].rest) {
           ++k;
