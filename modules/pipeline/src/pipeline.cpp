@@ -78,7 +78,9 @@ std::vector<int> split_depths(const std::vector<point<D>>& pts, const std::vecto
     total += vol[r];
   }
   std::vector<int> depth(bnd.size(), 0);
-  if (pts.size() < 4000 || !(total > 0)) return depth;  // small meshes: not worth a wall
+  // small meshes: not worth a wall (from 4,000 points: at 20,000 the 1e5-tetrahedron MOSFET's
+  // substrate, 18,000 points, kept one thread busy while the other idled; docs/benchmarks.md)
+  if (pts.size() < 4000 || !(total > 0)) return depth;
   for (std::size_t r = 0; r < bnd.size(); ++r)
     while (depth[r] < 4 && vol[r] > total / 8 * static_cast<double>(1 << depth[r])) ++depth[r];
   return depth;
