@@ -1,14 +1,15 @@
 #pragma once
 // Exact signs of the orientation and in-sphere determinants for the common case in which every
 // coordinate difference the determinant is built from is itself a double and all of them are
-// integer multiples of one power of two 2^e with fewer than 62 bits each (the points lie close
+// integer multiples of one power of two 2^e with at most 61 bits each (the points lie close
 // together, away from zero: a lattice, a facet's subdivision points, a small cavity). Axis-aligned
 // structures put many vertices exactly on common spheres and planes (a lattice cube's 8 corners),
 // and there the exact answer is 0: every floating-point filter fails and CGAL's exact fallback
 // (multi-precision Mpzf) cost about 0.8 microseconds a call, 17% of meshing the bench trench.
-// Here the differences are read as 62-bit integers (times 2^e, which does not change a sign)
+// Here the differences are read as 61-bit integers (times 2^e, which does not change a sign)
 // and the determinant is evaluated in fixed-width integers of 64-bit limbs: exact, no allocation.
 //
+// The double filters assume round-to-nearest, as CGAL's static filters do.
 // Every function returns the exact sign, as CGAL's predicates do, or `undecided` (2) when the
 // differences do not fit; the caller then asks CGAL. The answers are the same either way, so the
 // meshes are too (tests/core/predicates_test.cpp compares both on lattices and random input).
@@ -139,6 +140,25 @@ bool integer_rows(const std::array<const point3*, N>& pts, const point3& o, std:
   return true;
 }
 
+/// Whether the double filters' error bounds hold for these difference vectors: every non-zero
+/// entry at least 2^-140. Then every product of up to six entries (the longest term, in
+/// in_equatorial) is at least 2^-840, a normal double, so a product can underflow only after a
+/// cancellation, and its absolute error (at most 2^-1075) is a vanishing fraction of the
+/// permanent, which counts that term's magnitudes before the cancellation. Without the check an
+/// underflowed product later multiplied by a huge entry can exceed the bound (a review found
+/// orient3d, in_sphere and in_equatorial giving the wrong sign with entries of 2^-540 beside
+/// 2^1000). Overflow needs no check: it makes the permanent infinite, which the filters reject.
+template <std::size_t N>
+bool filter_safe(const std::array<point3, N>& rows) {
+  // on the bits of |x|: 0 < |x| < 2^-140 is (bits - 1) < bits(2^-140) - 1 unsigned (0 wraps
+  // above, NaN and infinities lie above too); one pass without branches
+  constexpr u64 below = std::bit_cast<u64>(0x1p-140) - 1;
+  bool tiny = false;
+  for (const auto& r : rows)
+    for (double x : r) tiny |= (std::bit_cast<u64>(x) & ~(u64{1} << 63)) - 1 < below;
+  return !tiny;
+}
+
 /// |x| and sign of an int64 as one limb.
 inline limbs<1> mag64(std::int64_t v, bool& negative) {
   negative = v < 0;
@@ -169,15 +189,16 @@ inline limbs<4> det3(const std::array<std::int64_t, 3>& p, const std::array<std:
 /// the determinant of the rows b-a, c-a, d-a.
 inline int orient3d(const point3& a, const point3& b, const point3& c, const point3& d) {
   using namespace detail;
-  // a double filter first: along any term, 3 rounded entries, 2 roundings in a 2x2 minor, 1 in
-  // the scaling, 2 in the sum: |error| <= gamma_8 * permanent, and 16 eps covers that and the
-  // permanent's own rounding (which underflow would spoil: tiny permanents skip the filter)
-  const point3 p = b - a, q = c - a, s = d - a;
+  // a double filter first (round to nearest): along any term, 3 rounded entries, 2 roundings in
+  // a 2x2 minor, 1 in the scaling, 2 in the sum: |error| <= gamma_8 * permanent, and 16 eps
+  // covers that and the permanent's own rounding (filter_safe: no underflow spoils it)
+  const std::array<point3, 3> rows = {b - a, c - a, d - a};
+  const point3 &p = rows[0], &q = rows[1], &s = rows[2];
   const double det = p[0] * (q[1] * s[2] - q[2] * s[1]) + p[1] * (q[2] * s[0] - q[0] * s[2]) + p[2] * (q[0] * s[1] - q[1] * s[0]);
   const double perm = std::abs(p[0]) * (std::abs(q[1] * s[2]) + std::abs(q[2] * s[1])) +
                       std::abs(p[1]) * (std::abs(q[2] * s[0]) + std::abs(q[0] * s[2])) +
                       std::abs(p[2]) * (std::abs(q[0] * s[1]) + std::abs(q[1] * s[0]));
-  if (std::abs(det) > 16 * eps * perm && std::isfinite(perm) && perm > 1e-200) return det > 0 ? 1 : -1;
+  if (std::abs(det) > 16 * eps * perm && std::isfinite(perm) && filter_safe(rows)) return det > 0 ? 1 : -1;
   std::array<std::array<std::int64_t, 3>, 3> r;
   if (!integer_rows<3>({&b, &c, &d}, a, r)) return undecided;
   return sign(det3(r[0], r[1], r[2]));
@@ -190,7 +211,7 @@ inline int in_sphere(const point3& a, const point3& b, const point3& c, const po
   {  // a double filter first: along any term, 5 rounded entries, 3 roundings in |r_i|^2, 5 in a
      // minor, 1 in the product, 3 in the sum: gamma_17 < 18 eps of the permanent; 32 eps covers
      // that and the permanent's own rounding
-    const point3 p[4] = {a - e, b - e, c - e, d - e};
+    const std::array<point3, 4> p = {a - e, b - e, c - e, d - e};
     auto minor = [&](std::size_t i, std::size_t j, std::size_t k, double& perm) {
       const point3 &x = p[i], &y = p[j], &z = p[k];
       perm = std::abs(x[0]) * (std::abs(y[1] * z[2]) + std::abs(y[2] * z[1])) +
@@ -204,7 +225,7 @@ inline int in_sphere(const point3& a, const point3& b, const point3& c, const po
     for (std::size_t i = 0; i < 4; ++i) w[i] = p[i][0] * p[i][0] + p[i][1] * p[i][1] + p[i][2] * p[i][2];
     const double det = -w[0] * M[0] + w[1] * M[1] - w[2] * M[2] + w[3] * M[3];
     const double perm = w[0] * P[0] + w[1] * P[1] + w[2] * P[2] + w[3] * P[3];
-    if (std::abs(det) > 32 * eps * perm && std::isfinite(perm) && perm > 1e-200) return det > 0 ? -1 : 1;
+    if (std::abs(det) > 32 * eps * perm && std::isfinite(perm) && filter_safe(p)) return det > 0 ? -1 : 1;
   }
   std::array<std::array<std::int64_t, 3>, 4> r;
   if (!integer_rows<4>({&a, &b, &c, &d}, e, r)) return undecided;
@@ -238,7 +259,8 @@ inline int in_equatorial(const point3& a, const point3& b, const point3& c, cons
   {  // a double filter first: along any term at most 19 roundings (entries 1, |u|^2 5, v x n 7,
      // the products and sums 6): gamma_19 < 20 eps of the permanent; 64 eps covers that and the
      // permanent's own rounding
-    const point3 u = b - a, v = c - a, w = t - a;
+    const std::array<point3, 3> rows = {b - a, c - a, t - a};
+    const point3 &u = rows[0], &v = rows[1], &w = rows[2];
     const point3 n = cross(u, v);
     const point3 an{std::abs(u[1] * v[2]) + std::abs(u[2] * v[1]), std::abs(u[2] * v[0]) + std::abs(u[0] * v[2]),
                     std::abs(u[0] * v[1]) + std::abs(u[1] * v[0])};
@@ -255,7 +277,7 @@ inline int in_equatorial(const point3& a, const point3& b, const point3& c, cons
     }
     const double nn = dot(n, n), pnn = dot(an, an);
     const double det = lhs - nn * ww, perm = plhs + pnn * ww;
-    if (std::abs(det) > 64 * eps * perm && std::isfinite(perm) && perm > 1e-200) return det > 0 ? 1 : -1;
+    if (std::abs(det) > 64 * eps * perm && std::isfinite(perm) && filter_safe(rows)) return det > 0 ? 1 : -1;
   }
   std::array<std::array<std::int64_t, 3>, 3> r;
   if (!integer_rows<3>({&b, &c, &t}, a, r)) return undecided;
