@@ -124,13 +124,15 @@ class simplicial_complex {
         }
       }
       // usually few entries (a vertex's star): insertion sort, else (a fan of thousands) std::sort
-      if (around.size() > 64)
+      if (around.size() > 64) {
         std::sort(around.begin(), around.end(), [](const entry& a, const entry& b) { return a.rest < b.rest; });
-      for (std::size_t a = 1; a < around.size() && around.size() <= 64; ++a) {
-        const entry e = around[a];
-        std::size_t b = a;
-        for (; b > 0 && around[b - 1].rest > e.rest; --b) around[b] = around[b - 1];
-        around[b] = e;
+      } else {
+        for (std::size_t a = 1; a < around.size(); ++a) {
+          const entry e = around[a];
+          std::size_t b = a;
+          for (; b > 0 && around[b - 1].rest > e.rest; --b) around[b] = around[b - 1];
+          around[b] = e;
+        }
       }
       for (std::size_t k = 0; k + 1 < around.size();) {
         if (around[k].rest != around[k + 1].rest) {

@@ -183,6 +183,14 @@ inline limbs<4> det3(const std::array<std::int64_t, 3>& p, const std::array<std:
   }
   return acc;
 }
+/// det[x; y; z] in doubles, and its permanent (the same expression on absolute values, no more
+/// roundings) for the filters' error bounds.
+inline double det3_double(const point3& x, const point3& y, const point3& z, double& perm) {
+  perm = std::abs(x[0]) * (std::abs(y[1] * z[2]) + std::abs(y[2] * z[1])) +
+         std::abs(x[1]) * (std::abs(y[2] * z[0]) + std::abs(y[0] * z[2])) +
+         std::abs(x[2]) * (std::abs(y[0] * z[1]) + std::abs(y[1] * z[0]));
+  return x[0] * (y[1] * z[2] - y[2] * z[1]) + x[1] * (y[2] * z[0] - y[0] * z[2]) + x[2] * (y[0] * z[1] - y[1] * z[0]);
+}
 }  // namespace detail
 
 /// Sign of orient3d(a, b, c, d) (+1: d on the side (b-a)x(c-a) points to), as CGAL's orientation:
@@ -193,11 +201,8 @@ inline int orient3d(const point3& a, const point3& b, const point3& c, const poi
   // a 2x2 minor, 1 in the scaling, 2 in the sum: |error| <= gamma_8 * permanent, and 16 eps
   // covers that and the permanent's own rounding (filter_safe: no underflow spoils it)
   const std::array<point3, 3> rows = {b - a, c - a, d - a};
-  const point3 &p = rows[0], &q = rows[1], &s = rows[2];
-  const double det = p[0] * (q[1] * s[2] - q[2] * s[1]) + p[1] * (q[2] * s[0] - q[0] * s[2]) + p[2] * (q[0] * s[1] - q[1] * s[0]);
-  const double perm = std::abs(p[0]) * (std::abs(q[1] * s[2]) + std::abs(q[2] * s[1])) +
-                      std::abs(p[1]) * (std::abs(q[2] * s[0]) + std::abs(q[0] * s[2])) +
-                      std::abs(p[2]) * (std::abs(q[0] * s[1]) + std::abs(q[1] * s[0]));
+  double perm;
+  const double det = det3_double(rows[0], rows[1], rows[2], perm);
   if (std::abs(det) > 16 * eps * perm && std::isfinite(perm) && filter_safe(rows)) return det > 0 ? 1 : -1;
   std::array<std::array<std::int64_t, 3>, 3> r;
   if (!integer_rows<3>({&b, &c, &d}, a, r)) return undecided;
@@ -212,15 +217,9 @@ inline int in_sphere(const point3& a, const point3& b, const point3& c, const po
      // minor, 1 in the product, 3 in the sum: gamma_17 < 18 eps of the permanent; 32 eps covers
      // that and the permanent's own rounding
     const std::array<point3, 4> p = {a - e, b - e, c - e, d - e};
-    auto minor = [&](std::size_t i, std::size_t j, std::size_t k, double& perm) {
-      const point3 &x = p[i], &y = p[j], &z = p[k];
-      perm = std::abs(x[0]) * (std::abs(y[1] * z[2]) + std::abs(y[2] * z[1])) +
-             std::abs(x[1]) * (std::abs(y[2] * z[0]) + std::abs(y[0] * z[2])) +
-             std::abs(x[2]) * (std::abs(y[0] * z[1]) + std::abs(y[1] * z[0]));
-      return x[0] * (y[1] * z[2] - y[2] * z[1]) + x[1] * (y[2] * z[0] - y[0] * z[2]) + x[2] * (y[0] * z[1] - y[1] * z[0]);
-    };
     double P[4];
-    const double M[4] = {minor(1, 2, 3, P[0]), minor(0, 2, 3, P[1]), minor(0, 1, 3, P[2]), minor(0, 1, 2, P[3])};
+    const double M[4] = {det3_double(p[1], p[2], p[3], P[0]), det3_double(p[0], p[2], p[3], P[1]),
+                         det3_double(p[0], p[1], p[3], P[2]), det3_double(p[0], p[1], p[2], P[3])};
     double w[4];
     for (std::size_t i = 0; i < 4; ++i) w[i] = p[i][0] * p[i][0] + p[i][1] * p[i][1] + p[i][2] * p[i][2];
     const double det = -w[0] * M[0] + w[1] * M[1] - w[2] * M[2] + w[3] * M[3];

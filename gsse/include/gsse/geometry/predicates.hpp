@@ -43,9 +43,9 @@ inline const kernel& K() {
 inline int orient2d(const point2& a, const point2& b, const point2& c) {
   return static_cast<int>(detail::K().orientation_2_object()(detail::cg(a), detail::cg(b), detail::cg(c)));
 }
-/// orient3d, in_sphere and in_equatorial first try fixed_predicates.hpp (its own double filter, then fixed-width
-/// integers when the coordinate differences allow: exact zeros on lattices and axis-aligned
-/// facets), and CGAL's filtered predicate otherwise; the sign is the exact one either way.
+/// orient3d, in_sphere and in_equatorial first try fixed_predicates.hpp (its own double filter,
+/// then fixed-width integers when the coordinate differences allow: exact zeros on lattices and
+/// axis-aligned facets), and CGAL's filtered predicate otherwise; the sign is exact either way.
 inline int orient3d(const point3& a, const point3& b, const point3& c, const point3& d) {
   if (const int s = fixed::orient3d(a, b, c, d); s != fixed::undecided) return s;
   return static_cast<int>(
