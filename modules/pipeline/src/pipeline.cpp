@@ -360,11 +360,7 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
     // connected set of clear points; 1e-7 covers the rounding of positions and distances)
     const double keep = 0.5 * h * (1 + 1e-7);
     hash_grid<D> near(lo, keep);
-    for (std::uint32_t f = 0; f < b.faces.size(); ++f) {
-      std::array<point<D>, D> v;
-      for (std::size_t k = 0; k < D; ++k) v[k] = b.points[b.faces[f][k]];
-      near.insert_simplex(f, v);  // not its box: a slanted facet's box is a volume of cells
-    }
+    using cell = typename hash_grid<D>::cell;
     auto face_distance2 = [&](std::uint32_t f, const point<D>& q) {
       const auto& F = b.faces[f];
       if constexpr (D == 2) {
@@ -374,13 +370,7 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
         return sizing::triangle_distance2(b.points[F[0]], b.points[F[1]], b.points[F[2]], q);
       }
     };
-    // a dense map of the cells the hash's ring search below can find a face from (within one cell
-    // of an occupied one): a lattice point in an unmarked cell is clear without a look at the
-    // hash (most of a slanted model's bounding box is far from every face, and each look hashes
-    // the 3^D cells about the point). Marked from the hash's own cells, not the faces' boxes (a
-    // slanted face's box is a volume of cells: on the rotated structures most cells were marked),
-    // so a point is unmarked exactly when the ring search would find no face. Skipped above 2^26
-    // cells or 2^20 along an axis (the hash's cell keys are exact below that).
+    // the hash's cells over the model's box: a dense map of them is kept where it is small
     std::array<long, D> dims{};
     double cells_total = 1;
     for (std::size_t k = 0; k < D; ++k) {
@@ -388,31 +378,95 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
       cells_total *= static_cast<double>(dims[k]);
       if (dims[k] >= (1l << 20)) cells_total = 1e300;
     }
-    std::vector<char> marked;
-    if (cells_total <= double(1 << 26)) {
-      marked.assign(static_cast<std::size_t>(cells_total), 0);
-      near.for_each_occupied([&](const typename hash_grid<D>::cell& o) {
-        typename hash_grid<D>::cell a = o, e = o;
-        for (std::size_t k = 0; k < D; ++k) a[k] = std::clamp(o[k] - 1, 0l, dims[k] - 1), e[k] = std::clamp(o[k] + 1, 0l, dims[k] - 1);
-        if constexpr (D == 3) {
-          for (long z = a[2]; z <= e[2]; ++z)
-            for (long y = a[1]; y <= e[1]; ++y)
-              std::fill_n(marked.begin() + ((z * dims[1] + y) * dims[0] + a[0]), e[0] - a[0] + 1, 1);
-        } else {
-          for (long y = a[1]; y <= e[1]; ++y) std::fill_n(marked.begin() + (y * dims[0] + a[0]), e[0] - a[0] + 1, 1);
-        }
+    // a cell clamped into the dense map: a face in a cell within one cell of q's lies within one
+    // cell of q's clamped cell too (clamping keeps the order of coordinates and shortens gaps)
+    auto index_of = [&](const cell& c) {
+      std::size_t i = 0;
+      for (std::size_t k = D; k-- > 0;) i = i * static_cast<std::size_t>(dims[k]) + static_cast<std::size_t>(std::clamp(c[k], 0l, dims[k] - 1));
+      return i;
+    };
+    // each face's cells (not its box: a slanted facet's box is a volume of cells), listed in
+    // parallel. Up to 2^24 cells they are filed in a dense table (faces per cell, counted then
+    // filled in face order), else in the hash: filing 467,000 (cell, face) pairs one by one into
+    // the hash, a vector per cell, was 40 ms of serial work on the rotated trench at 6e5 elements
+    std::vector<std::vector<cell>> face_cells(b.faces.size());
+    {
+      std::vector<std::uint32_t> face_ids(b.faces.size());
+      std::iota(face_ids.begin(), face_ids.end(), std::uint32_t{0});
+      for_each(execution::par(threads), face_ids, [&](std::uint32_t f) {
+        std::array<point<D>, D> v;
+        for (std::size_t k = 0; k < D; ++k) v[k] = b.points[b.faces[f][k]];
+        near.simplex_cells(v, [&](const cell& c) { face_cells[f].push_back(c); });
       });
     }
-    auto clear_of_boundary = [&](const point<D>& q) {
-      if (!marked.empty()) {
-        // the hash's own cell of q, clamped into the map: an occupied cell within one cell of q's
-        // lies within one cell of the clamped one too (clamping keeps the order of coordinates)
-        const auto c = near.cell_of(q);
-        std::size_t i = 0;
-        for (std::size_t k = D; k-- > 0;) i = i * static_cast<std::size_t>(dims[k]) + static_cast<std::size_t>(std::clamp(c[k], 0l, dims[k] - 1));
-        if (!marked[i]) return true;
+    const bool dense = cells_total <= double(1 << 24);
+    std::vector<std::uint32_t> first, listed;  // dense: the faces of cell i are listed[first[i] .. first[i + 1])
+    if (dense) {
+      first.assign(static_cast<std::size_t>(cells_total) + 1, 0);
+      for (const auto& cs : face_cells)
+        for (const auto& c : cs) ++first[index_of(c) + 1];
+      for (std::size_t i = 1; i < first.size(); ++i) first[i] += first[i - 1];
+      listed.resize(first.back());
+      std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+      for (std::uint32_t f = 0; f < face_cells.size(); ++f)
+        for (const auto& c : face_cells[f]) listed[fill[index_of(c)]++] = f;
+    } else {
+      for (std::uint32_t f = 0; f < face_cells.size(); ++f)
+        for (const auto& c : face_cells[f]) near.insert_cell(f, c);
+    }
+    face_cells = {};
+    // a dense map of the cells the ring search below can find a face from (within one cell of an
+    // occupied one): a lattice point in an unmarked cell is clear without a look at the faces
+    // (most of a slanted model's bounding box is far from every face, and each look reads the 3^D
+    // cells about the point). Marked from the faces' own cells, not their boxes (a slanted face's
+    // box is a volume of cells: on the rotated structures most cells were marked), so a point is
+    // unmarked exactly when the ring search would find no face. Skipped above 2^26 cells or 2^20
+    // along an axis (the hash's cell keys are exact below that).
+    std::vector<char> marked;
+    auto mark_about = [&](const cell& o) {
+      cell a = o, e = o;
+      for (std::size_t k = 0; k < D; ++k) a[k] = std::clamp(o[k] - 1, 0l, dims[k] - 1), e[k] = std::clamp(o[k] + 1, 0l, dims[k] - 1);
+      if constexpr (D == 3) {
+        for (long z = a[2]; z <= e[2]; ++z)
+          for (long y = a[1]; y <= e[1]; ++y)
+            std::fill_n(marked.begin() + ((z * dims[1] + y) * dims[0] + a[0]), e[0] - a[0] + 1, 1);
+      } else {
+        for (long y = a[1]; y <= e[1]; ++y) std::fill_n(marked.begin() + (y * dims[0] + a[0]), e[0] - a[0] + 1, 1);
       }
-      return near.visit_ring(q, 1, [&](std::uint32_t f) { return face_distance2(f, q) >= keep * keep; });
+    };
+    if (cells_total <= double(1 << 26)) {
+      marked.assign(static_cast<std::size_t>(cells_total), 0);
+      if (dense) {
+        for (std::size_t i = 0; i + 1 < first.size(); ++i) {
+          if (first[i] == first[i + 1]) continue;
+          cell o;
+          std::size_t r = i;
+          for (std::size_t k = 0; k < D; ++k) o[k] = static_cast<long>(r % static_cast<std::size_t>(dims[k])), r /= static_cast<std::size_t>(dims[k]);
+          mark_about(o);
+        }
+      } else {
+        near.for_each_occupied(mark_about);
+      }
+    }
+    auto clear_of_boundary = [&](const point<D>& q) {
+      const auto c = near.cell_of(q);
+      if (!marked.empty() && !marked[index_of(c)]) return true;
+      if (!dense) return near.visit_ring(q, 1, [&](std::uint32_t f) { return face_distance2(f, q) >= keep * keep; });
+      // the faces in the cells within one cell of q's (clamped) cell
+      cell a, e;
+      for (std::size_t k = 0; k < D; ++k) {
+        const long x = std::clamp(c[k], 0l, dims[k] - 1);
+        a[k] = std::max(x - 1, 0l), e[k] = std::min(x + 1, dims[k] - 1);
+      }
+      cell at = a;
+      for (;;) {
+        const std::size_t i = index_of(at);
+        for (auto j = first[i]; j < first[i + 1]; ++j)
+          if (face_distance2(listed[j], q) < keep * keep) return false;
+        std::size_t k = 0;
+        while (k < D && ++at[k] > e[k]) at[k] = a[k], ++k;
+        if (k == D) return true;
+      }
     };
     // lattice: BCC in 3D (nearest-neighbour distance h), triangular in 2D; the origin is shifted
     // by odd fractions so lattice points rarely sit exactly on axis-aligned input planes

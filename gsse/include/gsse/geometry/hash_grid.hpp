@@ -45,6 +45,14 @@ class hash_grid {
   /// the box.
   /// Every cell holding a point of the simplex is among them. A degenerate simplex: its box.
   void insert_simplex(std::uint32_t id, const std::array<point<D>, D>& v) {
+    simplex_cells(v, [&](const cell& c) { bucket(key(c)).push_back(id); });
+  }
+  /// Files id in cell c.
+  void insert_cell(std::uint32_t id, const cell& c) { bucket(key(c)).push_back(id); }
+  /// Calls f(cell) for every cell insert_simplex(id, v) files id in, in the same order (read only:
+  /// callers may list many simplices' cells in parallel, then file them).
+  template <class F>
+  void simplex_cells(const std::array<point<D>, D>& v, F&& f) const {
     point<D> lo = v[0], hi = v[0];
     for (const auto& q : v)
       for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
@@ -58,7 +66,13 @@ class hash_grid {
     std::size_t k = 0;
     for (std::size_t i = 1; i < D; ++i)
       if (std::abs(n[i]) > std::abs(n[k])) k = i;
-    if (!(std::abs(n[k]) > 0)) return insert_box(id, lo, hi);
+    if (!(std::abs(n[k]) > 0)) {
+      for_cells(cell_of(lo), cell_of(hi), [&](const cell& c) {
+        f(c);
+        return true;
+      });
+      return;
+    }
     const cell a = cell_of(lo), b = cell_of(hi);
     const double s = 1.0 / inv_;
     // the simplex's height along k over the column: x_k = v0_k - sum_{i != k} n_i (x_i - v0_i) / n_k
@@ -88,7 +102,7 @@ class hash_grid {
       for (long z = from[k]; z <= to[k]; ++z) {
         cell at = c;
         at[k] = z;
-        bucket(key(at)).push_back(id);
+        f(at);
       }
       return true;
     });
