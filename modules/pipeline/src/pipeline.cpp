@@ -393,10 +393,15 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
     {
       std::vector<std::uint32_t> face_ids(b.faces.size());
       std::iota(face_ids.begin(), face_ids.end(), std::uint32_t{0});
+      // largest first: a face's cells grow with its extent (to the power D - 1)
       for_each(execution::par(threads), face_ids, [&](std::uint32_t f) {
         std::array<point<D>, D> v;
         for (std::size_t k = 0; k < D; ++k) v[k] = b.points[b.faces[f][k]];
         near.simplex_cells(v, [&](const cell& c) { face_cells[f].push_back(c); });
+      }, [&](std::uint32_t f) {
+        double e = 0;
+        for (std::size_t k = 1; k < D; ++k) e = std::max(e, distance(b.points[b.faces[f][0]], b.points[b.faces[f][k]]));
+        return std::pow(e / keep + 1, static_cast<double>(D - 1));
       });
     }
     const bool dense = cells_total <= double(1 << 24);
@@ -491,14 +496,20 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
                       lo[1] + rowh * (static_cast<double>(s) + 0.0271)};
       }
     };
-    // 1. which points are clear of the boundary, slab by slab in parallel
+    // 1. which points are clear of the boundary, in parallel by eighths of slabs (slabs near many
+    // faces cost more; whole slabs, handed out in order, left one thread the last costly one)
     std::vector<std::vector<char>> clear(static_cast<std::size_t>(slabs));
+    for (auto& c : clear) c.resize(per_slab);
     std::vector<long> ids(static_cast<std::size_t>(slabs));
     std::iota(ids.begin(), ids.end(), 0l);
-    for_each(execution::par(co.threads), ids, [&](long s) {
-      std::vector<char> c(per_slab);
-      for (std::size_t k = 0; k < per_slab; ++k) c[k] = clear_of_boundary(lattice_point(s, k)) ? 1 : 0;
-      clear[static_cast<std::size_t>(s)] = std::move(c);
+    constexpr long parts = 8;
+    std::vector<long> pieces(static_cast<std::size_t>(slabs * parts));
+    std::iota(pieces.begin(), pieces.end(), 0l);
+    for_each(execution::par(co.threads), pieces, [&](long x) {
+      const long s = x / parts, part = x % parts;
+      auto& c = clear[static_cast<std::size_t>(s)];
+      const std::size_t from = per_slab * static_cast<std::size_t>(part) / parts, to = per_slab * static_cast<std::size_t>(part + 1) / parts;
+      for (std::size_t k = from; k < to; ++k) c[k] = clear_of_boundary(lattice_point(s, k)) ? 1 : 0;
     });
     // 2. whether they lie in a segment. Lattice neighbours (3D: a corner and the 8 centres about
     // it; 2D: the 6 about a point) are h apart, so no face passes between two clear neighbours
