@@ -82,6 +82,8 @@ using cells_by_region = std::vector<std::vector<std::array<vertex_id, D + 1>>>;
 /// What one round decides from a conforming Delaunay mesh (`cells` on the points of `b`).
 /// `todo` (optional, one flag per cell): only cells flagged nonzero are measured, and the flag of
 /// every one found good is cleared (remesh_cavities carries the flags of the cells that stay).
+/// `balls` (optional, one per cell, those remesh_cavities keeps): the circumball of every cell
+/// measured is stored, so that the cavity search does not compute it again.
 template <std::size_t D>
 struct plan {
   std::vector<point<D>> add;       // free points to insert
@@ -92,11 +94,20 @@ struct plan {
   std::size_t excepted = 0;        // of those, excepted (small input angle)
   std::vector<std::pair<vertex_id, std::size_t>> excepted_near;  // per acute PLC vertex, ascending
 };
+/// A cell's circumball as the cavity search bounds it (see remesh_cavities).
+template <std::size_t D>
+struct cell_ball {
+  static constexpr double unknown = -1, flat = -2;
+  point<D> at{};
+  double pad = unknown;  // the ball's radius padded by its rounding; unknown or flat
+};
+template <std::size_t D>
+using balls_by_region = std::vector<std::vector<cell_ball<D>>>;
 template <std::size_t D>
 plan<D> plan_round(const cells_by_region<D>& cells, const conformer::boundary<D>& b, double ratio_bound, unsigned threads,
                    const std::function<double(const point<D>&)>& size = {}, double sliver_angle = 0,
                    const conformer::labelling* labels = nullptr, std::vector<std::vector<char>>* todo = nullptr,
-                   double acute_guard = 0);
+                   double acute_guard = 0, balls_by_region<D>* balls = nullptr);
 
 /// How the refinement meshes (the pipeline's mesh_segments::wrap and ::assemble): every region of
 /// a labelled boundary from scratch (the first mesh, and the fallback when a round's cavities do
@@ -118,14 +129,6 @@ struct meshers {
 /// `flags` (one per cell, optional) follow their cells; every new cell gets 1.
 /// `balls` (optional, one per cell): each cell's circumball as the cavity search bounds it,
 /// kept from round to round (a cell never changes); a new cell gets ball::unknown.
-template <std::size_t D>
-struct cell_ball {
-  static constexpr double unknown = -1, flat = -2;
-  point<D> at{};
-  double pad = unknown;  // the ball's radius padded by its rounding; unknown or flat
-};
-template <std::size_t D>
-using balls_by_region = std::vector<std::vector<cell_ball<D>>>;
 /// `runs` (optional): per run of `cell_run` consecutive cells, the box of their
 /// balls and whether one is flat, kept from round to round until a cell of the run changes: a
 /// round then reads a box per run, not every cell, to find the runs no new point and no vertex of
