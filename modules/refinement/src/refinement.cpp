@@ -1028,20 +1028,40 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       ++W.removed;
       for (const auto& g : faces_into<D>(cells[r][i])) met.push_back({pack<D>(key_of<D>(g)), g});
     }
-    // by key only: within a key (a face met twice) the order is not read
-    std::sort(met.begin(), met.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    std::vector<std::pair<face_t<D>, face_t<D>>> open;  // sorted by key
-    for (std::size_t i = 0; i < met.size();) {
-      std::size_t j = i + 1;
-      while (j < met.size() && met[j].first == met[i].first) ++j;
-      if (j - i == 1) {
-        open.push_back({key_of<D>(met[i].second), met[i].second});
-      } else if (j - i > 2 || parity(met[i].second) == parity(met[i + 1].second)) {
-        W.ok = false;  // two dead cells on one side of a face
-        return;
+    // faces paired by key in an open-addressing table (sorting every face by key was most of this
+    // step); those met once are sorted by key: the cavity's boundary
+    std::size_t cap = 16;
+    while (cap < 2 * met.size()) cap *= 2;
+    constexpr std::uint32_t none = ~std::uint32_t{0};
+    std::vector<std::uint32_t> table(cap, none);
+    std::vector<char> twice(met.size(), 0);
+    for (std::uint32_t i = 0; i < met.size(); ++i) {
+      const packed_key<D> k = met[i].first;
+      std::uint64_t h = static_cast<std::uint64_t>(k);
+      if constexpr (D == 3) h ^= static_cast<std::uint64_t>(k >> 64) * 0xC2B2AE3D27D4EB4Full;
+      std::size_t at = static_cast<std::size_t>((h * 0x9E3779B97F4A7C15ull) >> 20) & (cap - 1);
+      for (;; at = (at + 1) & (cap - 1)) {
+        const std::uint32_t j = table[at];
+        if (j == none) {
+          table[at] = i;
+          break;
+        }
+        if (met[j].first != k) continue;
+        if (twice[j] || parity(met[j].second) == parity(met[i].second)) {
+          W.ok = false;  // two dead cells on one side of a face
+          return;
+        }
+        twice[j] = twice[i] = 1;
+        break;
       }
-      i = j;
     }
+    std::vector<std::pair<packed_key<D>, face_t<D>>> once;
+    for (std::uint32_t i = 0; i < met.size(); ++i)
+      if (!twice[i]) once.push_back(met[i]);
+    std::sort(once.begin(), once.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::vector<std::pair<face_t<D>, face_t<D>>> open;  // sorted by key
+    open.reserve(once.size());
+    for (const auto& [k, g] : once) open.push_back({key_of<D>(g), g});
     std::vector<char> gone_here(open.size(), 0);
     for (std::size_t f : gone_faces)
       for (int side = 0; side < 2; ++side)
