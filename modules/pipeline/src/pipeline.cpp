@@ -463,11 +463,18 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
         const long x = std::clamp(c[k], 0l, dims[k] - 1);
         a[k] = std::max(x - 1, 0l), e[k] = std::min(x + 1, dims[k] - 1);
       }
+      // a face meets several of those cells: each is measured once (the few seen so far are kept)
+      std::array<std::uint32_t, 16> seen;
+      std::size_t n_seen = 0;
       cell at = a;
       for (;;) {
         const std::size_t i = index_of(at);
-        for (auto j = first[i]; j < first[i + 1]; ++j)
-          if (face_distance2(listed[j], q) < keep * keep) return false;
+        for (auto j = first[i]; j < first[i + 1]; ++j) {
+          const std::uint32_t f = listed[j];
+          if (std::find(seen.begin(), seen.begin() + static_cast<long>(n_seen), f) != seen.begin() + static_cast<long>(n_seen)) continue;
+          if (face_distance2(f, q) < keep * keep) return false;
+          if (n_seen < seen.size()) seen[n_seen++] = f;
+        }
         std::size_t k = 0;
         while (k < D && ++at[k] > e[k]) at[k] = a[k], ++k;
         if (k == D) return true;
