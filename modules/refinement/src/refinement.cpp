@@ -403,13 +403,24 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       };
       // (subsegment, third vertex) of every face on two edge points, grouped by subsegment (a
       // sorted list: a hash map of lists per round cost more than the rest of the plan)
-      std::vector<std::pair<std::uint64_t, vertex_id>> around;
-      for (const auto& F : b.faces)
-        for (int i = 0; i < 3; ++i) {
-          const vertex_id u = F[static_cast<std::size_t>(i)], v = F[static_cast<std::size_t>((i + 1) % 3)], w = F[static_cast<std::size_t>((i + 2) % 3)];
-          if (!on_edge(u) || !on_edge(v) || !along(u, v)) continue;
-          around.push_back({(std::uint64_t{std::min(u, v)} << 32) | std::max(u, v), w});
+      // (in parallel over pieces of the face list: a pass over every boundary face each round)
+      std::vector<std::size_t> parts((b.faces.size() + piece - 1) / piece);
+      std::iota(parts.begin(), parts.end(), std::size_t{0});
+      std::vector<std::vector<std::pair<std::uint64_t, vertex_id>>> around_in(parts.size());
+      for_each(execution::par(threads), parts, [&](std::size_t q) {
+        for (std::size_t f = q * piece; f < std::min(b.faces.size(), (q + 1) * piece); ++f) {
+          const auto& F = b.faces[f];
+          const std::array<bool, 3> on{on_edge(F[0]), on_edge(F[1]), on_edge(F[2])};
+          if (on[0] + on[1] + on[2] < 2) continue;
+          for (std::size_t i = 0; i < 3; ++i) {
+            const vertex_id u = F[i], v = F[(i + 1) % 3], w = F[(i + 2) % 3];
+            if (!on[i] || !on[(i + 1) % 3] || !along(u, v)) continue;
+            around_in[q].push_back({(std::uint64_t{std::min(u, v)} << 32) | std::max(u, v), w});
+          }
         }
+      });
+      std::vector<std::pair<std::uint64_t, vertex_id>> around;
+      for (const auto& a : around_in) around.insert(around.end(), a.begin(), a.end());
       std::sort(around.begin(), around.end());
       std::vector<vertex_id> thirds;
       for (std::size_t at = 0; at < around.size();) {
