@@ -850,10 +850,9 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     // a face in the same place in both lists (a facet wrapped again keeps what no new point
     // disturbed in its place, the new triangles in the dead ones' places, the rest at the end)
     // neither went nor came: a face is listed once, so it is not elsewhere in either list. The
-    // common head and tail first, then place by place in the middle; only the faces left over
-    // are compared as sets
+    // common tail first (aligned from the end: a run that grew), then place by place from the
+    // start; only the faces left over are compared as sets
     auto same = same_face<D>;
-    while (a0 < e0 && a1 < e1 && same(b0.faces[a0], b1.faces[a1])) ++a0, ++a1;
     while (a0 < e0 && a1 < e1 && same(b0.faces[e0 - 1], b1.faces[e1 - 1])) --e0, --e1;
     std::vector<std::size_t> old_at, new_at;  // the places left over
     std::vector<face_t<D>> old_keys, new_keys;
