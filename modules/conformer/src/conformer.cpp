@@ -1449,12 +1449,38 @@ class state3 : public state<3> {
         if (!S.ball_known[t]) S.ball[t] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]), S.ball_known[t] = 1;
         const auto [cc, r] = S.ball[t];
         for (std::size_t a = 0; a < 3; ++a) box.lo[a] = std::min(box.lo[a], cc[a] - r), box.hi[a] = std::max(box.hi[a], cc[a] + r);
+      }
+      // the points inserted since the last check that lie in the piece's box of balls (every one
+      // a triangle's closed ball can hold), asked once for the piece: a known clean triangle is
+      // then tested against this short list, not the grid (no list: too many, the grid per triangle)
+      std::vector<vertex_id> near;
+      bool listed = true;
+      constexpr std::size_t most = 32;
+      if (recent.near_box(box.lo, box.hi)) {
+        const point3 mid = 0.5 * (box.lo + box.hi);
+        const double half = 0.5 * distance(box.lo, box.hi);
+        recent.visit_ball(mid, half * (1 + 1e-9), [&](vertex_id v) {
+          for (std::size_t a = 0; a < 3; ++a)
+            if (p[v][a] < box.lo[a] || p[v][a] > box.hi[a]) return true;
+          near.push_back(v);
+          return (listed = near.size() <= most);
+        });
+      }
+      auto held = [&](const std::array<vertex_id, 3>& T, const point3& cc, double r) {
+        if (!listed) return in_closed_ball(recent, T, cc, r);
+        for (vertex_id v : near)
+          if (squared_distance(cc, p[v]) <= r * r && geometry::in_equatorial(p[T[0]], p[T[1]], p[T[2]], p[v]) >= 0) return true;
+        return false;
+      };
+      for (std::size_t t = w.a; t < w.b; ++t) {
+        const auto& T = S.triangles[t];
+        const auto [cc, r] = S.ball[t];
         auto key = T;
         if (!S.checked) std::sort(key.begin(), key.end());
         // clean at the last check: only a point inserted since can encroach it
         vertex_id y = no_vertex;
         const bool known_clean = local ? !S.fresh[t] && S.was_clean[t] : S.checked || S.clean.contains(key);
-        if (!known_clean || in_closed_ball(recent, T, cc, r)) y = facet_encroacher(T[0], T[1], T[2], cc, r, ties);
+        if (!known_clean || held(T, cc, r)) y = facet_encroacher(T[0], T[1], T[2], cc, r, ties);
         // too large: circumradius above that of the facet lattice's equilateral triangle
         // (size / sqrt 3), not merely by rounding. An edge test ("longer than the size") cut the
         // near-right triangles where the lattice meets boundary strips and merged facets' seams,

@@ -78,6 +78,25 @@ std::vector<std::array<vertex_id, 4>> wrap(std::span<const point3> pts, const po
                                            const std::string& label, wrap_stats* stats, std::size_t max_cells) {
   return run(volume_kernel{pts}, grid, boundary, label, stats, max_cells, block_points);
 }
+std::vector<std::array<vertex_id, 4>> wrap_cavity(std::span<const point3> pts, const point_grid<3>& grid,
+                                                  const point_grid<3>& added, vertex_id first_added,
+                                                  const std::vector<std::array<vertex_id, 3>>& boundary,
+                                                  const std::string& label) {
+  // global ids (not run_on's positions): the old/added test reads them
+  const volume_kernel k{pts};  // the wrapper keeps a reference
+  gift_wrapper<volume_kernel> w(k, grid);
+  w.old_faces_from(&added, first_added);
+  return w.run_blocked(boundary, label, 0, block_points);
+}
+std::vector<std::array<vertex_id, 3>> wrap_cavity(std::span<const point2> pts, const point_grid<2>& grid,
+                                                  const point_grid<2>& added, vertex_id first_added,
+                                                  const std::vector<std::array<vertex_id, 2>>& boundary,
+                                                  const std::string& label) {
+  const plane_kernel k{pts};
+  gift_wrapper<plane_kernel> w(k, grid);
+  w.old_faces_from(&added, first_added);
+  return w.run_blocked(boundary, label, 0, block_points);
+}
 std::vector<std::array<vertex_id, 3>> wrap(std::span<const point2> pts, const point_grid<2>& grid,
                                            const std::vector<std::array<vertex_id, 2>>& boundary,
                                            const std::string& label, wrap_stats* stats, std::size_t max_cells) {

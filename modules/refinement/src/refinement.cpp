@@ -1193,8 +1193,12 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     for (std::size_t i = 0; i < ids.size(); ++i) at[i] = p[ids[i]];
     const front::point_grid<D> near(at, ids);
     try {
-      made[t] = front::wrap(std::span<const point<D>>(p), near, tk.front,
-                            "segment " + std::to_string(l1.regions[tk.region].number) + " '" + l1.regions[tk.region].name + "' (cavity)");
+      const std::string label = "segment " + std::to_string(l1.regions[tk.region].number) + " '" + l1.regions[tk.region].name + "' (cavity)";
+      // a face of old vertices only takes an added point as its apex (front::wrap_cavity): ids
+      // are sorted, the added ones (n0 on) last
+      const auto first = static_cast<std::size_t>(std::lower_bound(ids.begin(), ids.end(), static_cast<vertex_id>(n0)) - ids.begin());
+      const front::point_grid<D> added(std::span<const point<D>>(at).subspan(first), std::span<const vertex_id>(ids).subspan(first));
+      made[t] = front::wrap_cavity(std::span<const point<D>>(p), near, added, static_cast<vertex_id>(n0), tk.front, label);
     } catch (const std::exception&) {
       ok[t] = 0;
       return;

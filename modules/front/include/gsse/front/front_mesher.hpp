@@ -29,6 +29,18 @@ point_grid<2> make_grid(std::span<const point3> pts, int axis, std::span<const v
 /// at 4096-16384 points (docs/benchmarks.md); the pipeline's pieces are mostly smaller already.
 inline constexpr std::size_t block_points = 16384;
 
+/// wrap() for a cavity of a Delaunay mesh (the quality refinement's): the points of `grid` below
+/// `first_added` are the mesh's, those from it on (also in `added`, a grid of those only) were
+/// added since; the cells are wrap()'s, and a face of old vertices searches `added` only (no
+/// cell of the new mesh has only old vertices: gift_wrapper::old_faces_from).
+std::vector<std::array<vertex_id, 4>> wrap_cavity(std::span<const point3> pts, const point_grid<3>& grid,
+                                                  const point_grid<3>& added, vertex_id first_added,
+                                                  const std::vector<std::array<vertex_id, 3>>& boundary,
+                                                  const std::string& label);
+std::vector<std::array<vertex_id, 3>> wrap_cavity(std::span<const point2> pts, const point_grid<2>& grid,
+                                                  const point_grid<2>& added, vertex_id first_added,
+                                                  const std::vector<std::array<vertex_id, 2>>& boundary,
+                                                  const std::string& label);
 /// Tetrahedra filling the region bounded by `boundary` (triangles oriented so that the region lies
 /// on their positive side: orient3d(a,b,c,inside) > 0). Candidates are all points of `grid`.
 std::vector<std::array<vertex_id, 4>> wrap(std::span<const point3> pts, const point_grid<3>& grid,

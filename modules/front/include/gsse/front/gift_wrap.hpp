@@ -67,7 +67,7 @@ class gift_wrapper {
   using cell = std::array<vertex_id, D + 1>;
   using coord = std::array<double, G>;
 
-  gift_wrapper(const K& k, const point_grid<G>& grid) : k_(k), grid_(grid) {
+  gift_wrapper(const K& k, const point_grid<G>& grid) : k_(k), grid_(grid), cur_(&grid) {
     for (std::size_t a = 0; a < G; ++a)
       diagonal_ += (grid_.upper()[a] - grid_.lower()[a]) * (grid_.upper()[a] - grid_.lower()[a]);
     diagonal_ = std::sqrt(diagonal_);
@@ -84,6 +84,19 @@ class gift_wrapper {
     overlay_ = overlay;
     create_ = std::move(create);
     max_defer_ = max_defer;
+  }
+
+  /// Re-filling a cavity of a Delaunay mesh (strict order: perturbed balls) after points were
+  /// added: the vertices below `first_added` are the mesh's old ones, those from it on the added
+  /// points (the only others `added` holds). A cell of the new Delaunay mesh whose four (three)
+  /// vertices are old has an empty ball among the old points, so it was a cell of the old mesh,
+  /// which lies outside every cavity: every cell made has an added vertex, and a face of old
+  /// vertices only takes its apex among the added points. Its search reads `added`, not the
+  /// grid of all the cavity's points: the same apex, found among a few points.
+  void old_faces_from(const point_grid<G>* added, vertex_id first_added) {
+    static_assert(!Local, "old_faces_from: global ids");
+    added_grid_ = added && added->size() > 0 && k_.strict() ? added : nullptr;
+    first_added_ = first_added;
   }
 
   /// Re-wrapping a region after points were added (edge fronts with a strict order only; else
@@ -307,13 +320,13 @@ class gift_wrapper {
 
   template <class F>
   bool visit_box(const coord& lo, const coord& hi, F&& f) const {
-    if (!grid_.template visit_box<Local>(lo, hi, f)) return false;
+    if (!cur_->template visit_box<Local>(lo, hi, f)) return false;
     return !overlay_ || overlay_->visit_box(lo, hi, f);
   }
   /// The points of the grid cells meeting the ball (c, r) and the half-space dot(n, x) >= d.
   template <class F>
   bool visit_cap(const coord& c, double r, const coord& n, double d, F&& f) const {
-    if (!grid_.template visit_ball<Local>(c, r, n, d, f)) return false;
+    if (!cur_->template visit_ball<Local>(c, r, n, d, f)) return false;
     return !overlay_ || overlay_->visit_ball(c, r, n, d, f);
   }
 
@@ -404,6 +417,13 @@ class gift_wrapper {
   vertex_id apex(const face& f, const std::string& label) {
     if (!reused_.empty())
       if (const vertex_id x = reusable(f); x != no_vertex) return x;
+    // a face of old vertices only: its apex is one of the added points (see old_faces_from)
+    cur_ = &grid_;
+    if (added_grid_) {
+      bool old = true;
+      for (auto v : f) old = old && v < first_added_;
+      if (old) cur_ = added_grid_;
+    }
     const auto pr = k_.prepare(f);
     // Caps: the balls through the face's circumcircle, by height h above its plane; a vertex's
     // hint t is the centre offset of its ball, so the vertices in the cap of height h are those
@@ -418,7 +438,7 @@ class gift_wrapper {
     // plane, outside its circumcircle: rank it all (a lower bound, 4x, sent the faces of thin
     // lenses near the hull of the benchmark cube to that scan: 20% of all visits at 1e6 points)
     const double top = 256 * diagonal_;
-    for (double h = std::min(2 * std::sqrt(pr.r2), 2 * grid_.mean_step());; h *= 2) {
+    for (double h = std::min(2 * std::sqrt(pr.r2), 2 * cur_->mean_step());; h *= 2) {
       const double t = (h * h - pr.r2) / (2 * h);
       Rt = h - t;
       if (h > top || !std::isfinite(Rt)) {
@@ -500,7 +520,7 @@ class gift_wrapper {
     // the whole grid on the positive side
     coord c, n;
     double d = 0;
-    for (std::size_t a = 0; a < G; ++a) c[a] = 0.5 * (grid_.lower()[a] + grid_.upper()[a]);
+    for (std::size_t a = 0; a < G; ++a) c[a] = 0.5 * (cur_->lower()[a] + cur_->upper()[a]);
     const double r = diagonal_ + pr.l;
     positive_side(pr, r + std::sqrt(dot(c - pr.cc, c - pr.cc)), n, d);
     auto consider = [&](vertex_id y, const coord& q) {
@@ -515,7 +535,7 @@ class gift_wrapper {
     };
     visit_cap(c, r, n, d, consider);
     // the cap's half-space is a floating-point bound: before giving up, every vertex, exactly
-    if (best == no_vertex) visit_box(grid_.lower(), grid_.upper(), consider);
+    if (best == no_vertex) visit_box(cur_->lower(), cur_->upper(), consider);
     if (best == no_vertex) throw front_error(label + ": no vertex on the inner side of face " + describe(f));
     return best;
   }
@@ -568,7 +588,7 @@ class gift_wrapper {
       if (reliable)
         visit_cap(c, r, n, d, consider);
       else
-        visit_box(grid_.lower(), grid_.upper(), consider);
+        visit_box(cur_->lower(), cur_->upper(), consider);
       // every move is an exact improvement, so the walk cannot cycle
       if (jump != no_vertex) {
         ++stats_.candidate_tests;
@@ -621,6 +641,9 @@ class gift_wrapper {
 
   const K& k_;
   const point_grid<G>& grid_;
+  const point_grid<G>* cur_;                  // the grid apex() searches: grid_, or added_grid_
+  const point_grid<G>* added_grid_ = nullptr;  // old_faces_from()
+  vertex_id first_added_ = 0;
   double diagonal_ = 0;  // of the grid's box
   const point_overlay<G>* overlay_ = nullptr;
   creator create_;
