@@ -812,6 +812,12 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   if (p.size() < n0 || l0.regions.size() != l1.regions.size() || cells.size() != l1.regions.size()) return false;
   for (std::size_t r = 0; r < l1.regions.size(); ++r)
     if (l0.regions[r].number != l1.regions[r].number) return false;
+  // the old points where and what they were (free, on a facet...): then no new cell has only old
+  // vertices and wrap_cavity's apex search may read the added points alone for such faces.
+  // Checked, not assumed: a free point the conformer claimed for a facet would be new to the
+  // segment across it
+  bool settled = b0.homes.size() == n0 && b1.homes.size() >= n0;
+  for (std::size_t v = 0; settled && v < n0; ++v) settled = b0.points[v] == p[v] && b0.homes[v].kind == b1.homes[v].kind;
   // the boundary faces that went (split) and came. The conformer lists faces source by source
   // (PLC edge or facet), in the same order each round, and a source it did not touch keeps its
   // list: where the runs of sources match, only runs that differ are compared as sets
@@ -1196,9 +1202,13 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       const std::string label = "segment " + std::to_string(l1.regions[tk.region].number) + " '" + l1.regions[tk.region].name + "' (cavity)";
       // a face of old vertices only takes an added point as its apex (front::wrap_cavity): ids
       // are sorted, the added ones (n0 on) last
-      const auto first = static_cast<std::size_t>(std::lower_bound(ids.begin(), ids.end(), static_cast<vertex_id>(n0)) - ids.begin());
-      const front::point_grid<D> added(std::span<const point<D>>(at).subspan(first), std::span<const vertex_id>(ids).subspan(first));
-      made[t] = front::wrap_cavity(std::span<const point<D>>(p), near, added, static_cast<vertex_id>(n0), tk.front, label);
+      if (settled) {
+        const auto first = static_cast<std::size_t>(std::lower_bound(ids.begin(), ids.end(), static_cast<vertex_id>(n0)) - ids.begin());
+        const front::point_grid<D> added(std::span<const point<D>>(at).subspan(first), std::span<const vertex_id>(ids).subspan(first));
+        made[t] = front::wrap_cavity(std::span<const point<D>>(p), near, added, static_cast<vertex_id>(n0), tk.front, label);
+      } else {
+        made[t] = front::wrap(std::span<const point<D>>(p), near, tk.front, label);
+      }
     } catch (const std::exception&) {
       ok[t] = 0;
       return;
