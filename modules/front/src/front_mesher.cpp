@@ -51,6 +51,16 @@ auto run(const K& k, const point_grid<K::grid_dim>& grid, const std::vector<Face
   });
 }
 
+/// wrap_cavity(): one front on global ids (not run_on's positions: the old/added test reads them),
+/// faces of old vertices searching `added` only.
+template <class K, class Face>
+auto run_cavity(const K& k, const point_grid<K::grid_dim>& grid, const point_grid<K::grid_dim>& added, vertex_id first_added,
+                const std::vector<Face>& boundary, const std::string& label) {
+  gift_wrapper<K> w(k, grid);  // keeps a reference to k, which outlives it here
+  w.old_faces_from(&added, first_added);
+  return w.run_blocked(boundary, label, 0, block_points);
+}
+
 template <class K, class Face>
 auto run_wall(const K& k, const point_grid<K::grid_dim>& grid, const std::vector<Face>& boundary,
               const std::string& label, std::size_t axis, double x0, std::array<std::vector<Face>, 2>& sides) {
@@ -82,20 +92,13 @@ std::vector<std::array<vertex_id, 4>> wrap_cavity(std::span<const point3> pts, c
                                                   const point_grid<3>& added, vertex_id first_added,
                                                   const std::vector<std::array<vertex_id, 3>>& boundary,
                                                   const std::string& label) {
-  // global ids (not run_on's positions): the old/added test reads them
-  const volume_kernel k{pts};  // the wrapper keeps a reference
-  gift_wrapper<volume_kernel> w(k, grid);
-  w.old_faces_from(&added, first_added);
-  return w.run_blocked(boundary, label, 0, block_points);
+  return run_cavity(volume_kernel{pts}, grid, added, first_added, boundary, label);
 }
 std::vector<std::array<vertex_id, 3>> wrap_cavity(std::span<const point2> pts, const point_grid<2>& grid,
                                                   const point_grid<2>& added, vertex_id first_added,
                                                   const std::vector<std::array<vertex_id, 2>>& boundary,
                                                   const std::string& label) {
-  const plane_kernel k{pts};
-  gift_wrapper<plane_kernel> w(k, grid);
-  w.old_faces_from(&added, first_added);
-  return w.run_blocked(boundary, label, 0, block_points);
+  return run_cavity(plane_kernel{pts}, grid, added, first_added, boundary, label);
 }
 std::vector<std::array<vertex_id, 3>> wrap(std::span<const point2> pts, const point_grid<2>& grid,
                                            const std::vector<std::array<vertex_id, 2>>& boundary,
