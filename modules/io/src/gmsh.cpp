@@ -834,15 +834,15 @@ struct boundary_groups {
 
   boundary_groups(const domain<D>& d, const std::string& path) {
     const auto outer = detail::outer_facets(d, path);
-    const detail::marker_lookup<D> marker(d);
+    const auto marks = detail::mark_facets(d, outer);
     std::map<std::tuple<int, long, long>, std::size_t> at;
     auto add = [&](int m, long a, long b, const std::array<vertex_id, D>& f) {
       auto [it, fresh] = at.try_emplace({m, a, b}, entities.size());
       if (fresh) entities.push_back({m, a, b, {}, {}});
       entities[it->second].faces.push_back(f);
     };
-    for (const auto& f : outer) add(marker.empty() ? 0 : marker(f.vertices), static_cast<long>(f.first), f.second, f.vertices);
-    for (const auto& [f, m] : detail::inner_marked(d, outer)) add(m, -2, -2, f);
+    for (std::size_t i = 0; i < outer.size(); ++i) add(marks.outer[i], static_cast<long>(outer[i].first), outer[i].second, outer[i].vertices);
+    for (const auto& [f, m] : marks.inner) add(m, -2, -2, f);
     // groups: positive markers keep their number as tag; interfaces and other markers after them
     std::map<int, int> marker_tag;
     int next = 1;

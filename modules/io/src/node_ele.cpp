@@ -131,8 +131,8 @@ void write_node_ele(const domain<D>& d, const std::string& path, unsigned thread
   const auto& pts = d.points();
   detail::check_domain(d, base + ".ele");
   const auto faces = detail::outer_facets(d, base + (D == 3 ? ".face" : ".edge"), threads);
-  const detail::marker_lookup<D> marker(d);
-  const auto inner = detail::inner_marked(d, faces);
+  const auto marks = detail::mark_facets(d, faces, threads);
+  const auto& inner = marks.inner;
   // the interface code first * m + second lies above every segment number and every marker
   int largest = 0;
   for (const auto& s : d.segments()) largest = std::max(largest, std::abs(s.number()));
@@ -185,7 +185,7 @@ void write_node_ele(const domain<D>& d, const std::string& path, unsigned thread
       for (auto v : f.vertices) detail::append_int(line += ' ', static_cast<long long>(v) + 1);
       const int a = d.segments()[f.first].number();
       const int b = f.second < 0 ? 0 : d.segments()[static_cast<std::size_t>(f.second)].number();
-      const int mk = marker.empty() ? 0 : marker(f.vertices);
+      const int mk = marks.outer[i];
       detail::append_int(line += ' ', mk != 0 ? static_cast<long long>(mk) : static_cast<long long>(a) * m + b);
       line += '\n';
     });

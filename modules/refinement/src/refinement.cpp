@@ -421,7 +421,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       });
       std::vector<std::pair<std::uint64_t, vertex_id>> around;
       for (const auto& a : around_in) around.insert(around.end(), a.begin(), a.end());
-      std::sort(around.begin(), around.end());
+      gsse::stable_sort(execution::par(threads), around.begin(), around.end());
       std::vector<vertex_id> thirds;
       for (std::size_t at = 0; at < around.size();) {
         const std::uint64_t key = around[at].first;
@@ -611,7 +611,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
         for (auto g : v) found[who[g].first][who[g].second].may_leave = true;
       std::vector<std::pair<std::uint32_t, std::uint32_t>> all_hits;
       for (auto& h : hits) all_hits.insert(all_hits.end(), h.begin(), h.end());
-      std::sort(all_hits.begin(), all_hits.end());
+      gsse::stable_sort(execution::par(threads), all_hits.begin(), all_hits.end());
       for (std::size_t j = 0; j < all_hits.size();) {
         const auto [k, i] = who[all_hits[j].first];
         auto& x = found[k][i];
@@ -680,7 +680,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
     out.outside = out.add.size() - inside.size();
     out.add = std::move(inside);
   }
-  std::sort(split.begin(), split.end());
+  gsse::stable_sort(execution::par(threads), split.begin(), split.end());
   split.erase(std::unique(split.begin(), split.end()), split.end());
   out.split = std::move(split);
   return out;
