@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <sstream>
 
 #include "../support/fixtures.hpp"
@@ -153,6 +154,76 @@ void markers_round_trip(const char* scratch) {
 
 BOOST_AUTO_TEST_CASE(node_ele_markers_3d) { markers_round_trip<3>("rt_mk3"); }
 BOOST_AUTO_TEST_CASE(node_ele_markers_2d) { markers_round_trip<2>("rt_mk2"); }
+
+// A marked face inside a segment (not a boundary or interface facet) is written once after the
+// outer facets, with its marker; a face marked twice keeps its earliest marker, whatever the
+// vertex order it was listed in, and is written once; a boundary facet's marker replaces its
+// interface code. Read back: the earliest marker of each marked face.
+template <std::size_t D>
+void inner_and_repeated_markers(const char* scratch) {
+  test::scratch_dir dir(scratch);
+  auto d = finalized(sample<D>());
+  const auto& s0 = d.segments()[0];
+  std::array<vertex_id, D> inner{}, outer{};
+  bool have_inner = false, have_outer = false;
+  for (cell_id c : cells(s0))
+    for (int i = 0; i <= static_cast<int>(D); ++i) {
+      const auto v = vertices(s0, facet{c, i});
+      if (!have_inner && neighbour(s0, c, i) != no_cell) inner = v, have_inner = true;
+      if (!have_outer && neighbour(s0, c, i) == no_cell) outer = v, have_outer = true;
+    }
+  BOOST_TEST_REQUIRE((have_inner && have_outer));
+  auto reversed = [](std::array<vertex_id, D> f) {
+    std::reverse(f.begin(), f.end());
+    return f;
+  };
+  d.marked_faces().push_back({inner, 11});
+  d.marked_faces().push_back({reversed(outer), 4});
+  d.marked_faces().push_back({reversed(inner), 12});  // the same face again: 11 stays
+  d.marked_faces().push_back({outer, 6});              // 4 stays
+  io::write_node_ele(d, dir.file("mesh"));
+  // the .face/.edge file: each face once, the inner one last
+  std::ifstream in(dir.file(D == 3 ? "mesh.face" : "mesh.edge"));
+  std::string line;
+  std::vector<std::pair<std::array<vertex_id, D>, long>> rows;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ls(line);
+    long n = 0;
+    ls >> n;
+    std::array<vertex_id, D> f;
+    long m = 0;
+    bool full = true;
+    for (auto& v : f) {
+      long x = 0;
+      full = full && static_cast<bool>(ls >> x);
+      v = static_cast<vertex_id>(x - 1);
+    }
+    if (!full || !(ls >> m)) continue;  // the count line
+    std::sort(f.begin(), f.end());
+    rows.push_back({f, m});
+  }
+  auto key = [](std::array<vertex_id, D> f) {
+    std::sort(f.begin(), f.end());
+    return f;
+  };
+  BOOST_TEST_REQUIRE(!rows.empty());
+  BOOST_TEST((rows.back() == std::pair<std::array<vertex_id, D>, long>{key(inner), 11}));
+  BOOST_TEST(std::count_if(rows.begin(), rows.end(), [&](const auto& r) { return r.first == key(inner); }) == 1);
+  BOOST_TEST(std::count_if(rows.begin(), rows.end(), [&](const auto& r) { return r.first == key(outer); }) == 1);
+  for (const auto& r : rows)
+    if (r.first == key(outer)) BOOST_TEST(r.second == 4);
+  const auto back = io::read_node_ele<D>(dir.file("mesh"));
+  std::vector<std::pair<std::array<vertex_id, D>, int>> got;
+  for (const auto& f : back.marked_faces()) got.push_back({key(f.vertices), f.marker});
+  std::sort(got.begin(), got.end());
+  std::vector<std::pair<std::array<vertex_id, D>, int>> want{{key(inner), 11}, {key(outer), 4}};
+  std::sort(want.begin(), want.end());
+  BOOST_TEST((got == want));
+}
+
+BOOST_AUTO_TEST_CASE(node_ele_inner_and_repeated_markers_3d) { inner_and_repeated_markers<3>("rt_mki3"); }
+BOOST_AUTO_TEST_CASE(node_ele_inner_and_repeated_markers_2d) { inner_and_repeated_markers<2>("rt_mki2"); }
 
 BOOST_AUTO_TEST_CASE(node_ele_edge_2d) {
   test::scratch_dir dir("rt_ne2");
