@@ -1444,15 +1444,31 @@ class state3 : public state<3> {
       std::vector<split_candidate> mine;
       auto& box = summary[k];
       box.lo = box.hi = p[S.triangles[w.a][0]];
+      // and in the facet's own frame (e1, e2, normal): a slanted piece's box of balls is a volume,
+      // its frame box a slab as thick as its largest ball (every ball's extent along a unit axis
+      // is its centre's coordinate +- r; padded far above the rounding of the dot products)
+      const std::array<point3, 3> frame{S.e1, S.e2, S.unit};
+      double far = 0;
+      for (std::size_t a = 0; a < 3; ++a) far = std::max({far, std::abs(box_lo_[a]), std::abs(box_hi_[a])});
+      const double pad = 1e-9 * model_size_ + 1e-12 * far;
+      point3 flo, fhi;
+      for (std::size_t a = 0; a < 3; ++a) flo[a] = 1e300, fhi[a] = -1e300;
       for (std::size_t t = w.a; t < w.b; ++t) {
         const auto& T = S.triangles[t];
         if (!S.ball_known[t]) S.ball[t] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]), S.ball_known[t] = 1;
         const auto [cc, r] = S.ball[t];
         for (std::size_t a = 0; a < 3; ++a) box.lo[a] = std::min(box.lo[a], cc[a] - r), box.hi[a] = std::max(box.hi[a], cc[a] + r);
+        const double rp = r * (1 + 1e-9) + pad;
+        for (std::size_t a = 0; a < 3; ++a) {
+          const double x = dot(cc, frame[a]);
+          flo[a] = std::min(flo[a], x - rp), fhi[a] = std::max(fhi[a], x + rp);
+        }
       }
-      // the points inserted since the last check that lie in the piece's box of balls (every one
-      // a triangle's closed ball can hold), asked once for the piece: a known clean triangle is
-      // then tested against this short list, not the grid (no list: too many, the grid per triangle)
+      // the points inserted since the last check that lie in the piece's box of balls and in its
+      // frame box (every one a triangle's closed ball can hold), asked once for the piece: a known
+      // clean triangle is then tested against this short list, not the grid (no list: too many,
+      // the grid per triangle). On a slanted facet the frame box keeps the list to the slab about
+      // the piece, not the volume of its axis-aligned box (rotated trench: the conformer 3% faster)
       std::vector<vertex_id> near;
       bool listed = true;
       constexpr std::size_t most = 32;
@@ -1462,12 +1478,24 @@ class state3 : public state<3> {
         recent.visit_ball(mid, half * (1 + 1e-9), [&](vertex_id v) {
           for (std::size_t a = 0; a < 3; ++a)
             if (p[v][a] < box.lo[a] || p[v][a] > box.hi[a]) return true;
+          for (std::size_t a = 0; a < 3; ++a)
+            if (const double x = dot(p[v], frame[a]); x < flo[a] || x > fhi[a]) return true;
           near.push_back(v);
           return (listed = near.size() <= most);
         });
       }
+      // the listed points' box: a ball that misses it holds none of them
+      point3 nlo{}, nhi{};
+      for (std::size_t i = 0; i < near.size(); ++i)
+        for (std::size_t a = 0; a < 3; ++a) {
+          const double x = p[near[i]][a];
+          nlo[a] = i == 0 ? x : std::min(nlo[a], x), nhi[a] = i == 0 ? x : std::max(nhi[a], x);
+        }
       auto held = [&](const std::array<vertex_id, 3>& T, const point3& cc, double r) {
         if (!listed) return in_closed_ball(recent, T, cc, r);
+        if (near.empty()) return false;
+        for (std::size_t a = 0; a < 3; ++a)
+          if (cc[a] + r < nlo[a] || cc[a] - r > nhi[a]) return false;
         for (vertex_id v : near)
           if (squared_distance(cc, p[v]) <= r * r && geometry::in_equatorial(p[T[0]], p[T[1]], p[T[2]], p[v]) >= 0) return true;
         return false;
