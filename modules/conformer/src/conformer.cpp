@@ -1426,6 +1426,11 @@ class state3 : public state<3> {
     }
     std::vector<std::vector<split_candidate>> found(work.size());
     std::vector<typename facet_state::piece_summary> summary(work.size());
+    // the pad of the pieces' frame boxes (below): far above the rounding of dot products of
+    // coordinates this large
+    double far = 0;
+    for (std::size_t a = 0; a < 3; ++a) far = std::max({far, std::abs(box_lo_[a]), std::abs(box_hi_[a])});
+    const double pad = 1e-9 * model_size_ + 1e-12 * far;
     auto check = [&](const range& w) {
       auto& S = facets_[w.f];
       const std::size_t k = static_cast<std::size_t>(&w - work.data());
@@ -1448,9 +1453,6 @@ class state3 : public state<3> {
       // its frame box a slab as thick as its largest ball (every ball's extent along a unit axis
       // is its centre's coordinate +- r; padded far above the rounding of the dot products)
       const std::array<point3, 3> frame{S.e1, S.e2, S.unit};
-      double far = 0;
-      for (std::size_t a = 0; a < 3; ++a) far = std::max({far, std::abs(box_lo_[a]), std::abs(box_hi_[a])});
-      const double pad = 1e-9 * model_size_ + 1e-12 * far;
       point3 flo, fhi;
       for (std::size_t a = 0; a < 3; ++a) flo[a] = 1e300, fhi[a] = -1e300;
       for (std::size_t t = w.a; t < w.b; ++t) {
