@@ -1031,9 +1031,22 @@ class state3 : public state<3> {
 
   /// All vertices of facet f.
   std::vector<vertex_id> facet_vertices(std::uint32_t f) const {
-    std::vector<vertex_id> vs(facets_[f].interior);
-    for (auto [e, fw] : facets_[f].sides) vs.insert(vs.end(), edges_[e].chain.begin(), edges_[e].chain.end());
-    std::sort(vs.begin(), vs.end());
+    // the interior points come in id order (added points get the next id; a claimed free point,
+    // an older one, breaks it): the chains' points sorted and merged in, not the facet sorted
+    // again on every wrap of a large facet in a late round
+    const auto& in = facets_[f].interior;
+    std::vector<vertex_id> ring;
+    for (auto [e, fw] : facets_[f].sides) ring.insert(ring.end(), edges_[e].chain.begin(), edges_[e].chain.end());
+    std::sort(ring.begin(), ring.end());
+    std::vector<vertex_id> vs;
+    vs.reserve(in.size() + ring.size());
+    if (std::is_sorted(in.begin(), in.end())) {
+      std::merge(in.begin(), in.end(), ring.begin(), ring.end(), std::back_inserter(vs));
+    } else {
+      vs = in;
+      vs.insert(vs.end(), ring.begin(), ring.end());
+      std::sort(vs.begin(), vs.end());
+    }
     vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
     return vs;
   }
