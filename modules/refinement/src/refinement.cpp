@@ -622,15 +622,19 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
     }
   }
   // in order of decreasing circumradius r (ties: by position), each at least `apart` x r from the
-  // points taken before it. 3D: apart = 0.9, not 1: a circumcentre whose ball holds a point
-  // taken before it only in its outer tenth (its cell dies with that insertion) goes in too,
-  // where it would otherwise come back as the next round's bad element; the rounds' tail
-  // shortened (rotated trench 23 -> 18 rounds, 1 and 2 threads 7-8% faster, the same points
-  // within 0.2%; docs/benchmarks.md). Its insertion radius stays at least apart x r, which for
-  // an element above the bound B is more than apart x B x its shortest edge, and apart x B >= 1.1
-  // (the floor below): new edges are longer than the bad element's shortest, as the termination
-  // argument of Delaunay refinement needs. 2D (off-centres, Triangle's rule) keeps 1
-  const double apart = D == 3 ? std::max(0.9, std::min(1.0, 1.1 / bound)) : 1.0;
+  // points taken before it. 3D without small input angles (no acute vertex, no sharp input edge):
+  // apart = 0.9, not 1: a circumcentre whose ball holds a point taken before it only in its
+  // outer tenth (its cell dies with that insertion) goes in too, where it would otherwise come
+  // back as the next round's bad element; the rounds' tail shortened (rotated trench 23 -> 18
+  // rounds, the same points within 0.2%; docs/benchmarks.md, eighteenth part). With small angles
+  // it lengthened the cascades about them instead (CAD parts of the corpus: occ_chair and
+  // gmsh_primitives no longer converged in 60 rounds), so there it stays 1. The insertion radius
+  // stays at least apart x r, which for an element above the bound B is more than apart x B x its
+  // shortest edge, and apart x B >= 1.1 (the floor below): new edges are longer than the bad
+  // element's shortest, as the termination argument of Delaunay refinement needs. 2D
+  // (off-centres, Triangle's rule) keeps 1
+  const bool no_small_angles = acute_guard > 0 && guarded.empty() && sharp.empty();
+  const double apart = D == 3 && no_small_angles ? std::max(0.9, std::min(1.0, 1.1 / bound)) : 1.0;
   struct ref {
     std::uint32_t chunk, index;
   };
