@@ -9,9 +9,10 @@
 // free, in order of decreasing circumradius r, each at least `apart` x r from the ones taken
 // before it in the round (2D: apart = 1, a batch some sequential order of Ruppert's insertions
 // could have made, and so in 3D about small input angles; 3D without any: 0.9, at least
-// 1.1 / bound, so every insertion radius still exceeds 1.1 x the bad element's shortest edge;
-// modules/refinement/README.md). The boundary is then resumed, never rebuilt (conformer::resume: every boundary
-// point stays, the new free points are conformed to like any), labelled and meshed again.
+// 1.1 / bound, so the insertion radius of an element above the bound still exceeds 1.1 x its
+// shortest edge; modules/refinement/README.md). The boundary is then resumed, never rebuilt
+// (conformer::resume: every boundary point stays, the new free points are conformed to like
+// any), labelled and meshed again.
 // Decisions on the mesh (encroachment) are exact predicates; the quality test itself compares
 // doubles, which only selects which points are proposed.
 #include <array>
