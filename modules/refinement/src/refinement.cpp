@@ -328,9 +328,56 @@ std::uint64_t morton_code(const point<D>& x, const point<D>& lo, const point<D>&
 }  // namespace
 
 template <std::size_t D>
+spacing_floor<D>::spacing_floor(const conformer::boundary<D>& b, double r) : ratio(b.plc_points > 0 ? r : 0.0) {
+  if (!(ratio > 0)) return;
+  const auto& p = b.points;
+  std::vector<double> nn(p.size(), std::numeric_limits<double>::infinity());
+  for (const auto& F : b.faces)
+    for (std::size_t i = 0; i < D; ++i)
+      for (std::size_t j = i + 1; j < D; ++j) {
+        const double l = distance(p[F[i]], p[F[j]]);
+        nn[F[i]] = std::min(nn[F[i]], l), nn[F[j]] = std::min(nn[F[j]], l);
+      }
+  std::vector<sizing::aabb<D>> boxes;
+  std::vector<double> values;
+  for (std::size_t v = 0; v < p.size(); ++v)
+    if (nn[v] < std::numeric_limits<double>::infinity()) {
+      auto box = sizing::aabb<D>::empty();
+      box.add(p[v]);
+      boxes.push_back(box), values.push_back(nn[v]);
+    }
+  for (double v : values) cap = std::max(cap, v);
+  spacing = sizing::box_tree<D>(std::move(boxes), std::move(values));
+  std::vector<sizing::aabb<D>> at;
+  for (std::size_t v = 0; v < b.plc_points && v < p.size(); ++v) {
+    auto box = sizing::aabb<D>::empty();
+    box.add(p[v]);
+    at.push_back(box);
+  }
+  inputs = sizing::box_tree<D>(std::move(at), std::vector<double>(std::min(b.plc_points, p.size()), 0.0));
+}
+
+template <std::size_t D>
+vertex_id spacing_floor<D>::nearest_input(const point<D>& x) const {
+  const double d = inputs.graded_min(x, 1.0);
+  const double d2 = d * d * (1 + 1e-9) + 1e-300;
+  vertex_id best = no_vertex;
+  inputs.visit([&](const sizing::aabb<D>& box) { return box.distance2(x) <= d2; },
+               [&](std::uint32_t i) {
+                 if (inputs.box(i).distance2(x) <= d2 && (best == no_vertex || i < best)) best = i;
+                 return true;
+               });
+  return best;
+}
+
+template struct spacing_floor<2>;
+template struct spacing_floor<3>;
+
+template <std::size_t D>
 plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary<D>& b, double bound, unsigned threads,
                    const std::function<double(const point<D>&)>& size, double sliver, const conformer::labelling* l,
-                   std::vector<std::vector<char>>* todo, double acute_guard, balls_by_region<D>* balls) {
+                   std::vector<std::vector<char>>* todo, double acute_guard, balls_by_region<D>* balls,
+                   const spacing_floor<D>* floor) {
   plan<D> out;
   const auto& bp = b.points;
   // the cells in chunks, segment by segment: candidates are found in parallel and merged in
@@ -485,6 +532,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
     return no_vertex;
   };
   std::vector<std::vector<vertex_id>> excepted(chunks.size());  // per chunk: where each excepted element is
+  std::vector<std::size_t> floored(chunks.size(), 0);  // per chunk: of those, below the spacing floor
   // the guards' boxes in a tree: the excepted elements are looked at again every round, and a CAD
   // part has hundreds of acute vertices
   std::vector<sizing::aabb<D>> guard_boxes;
@@ -547,6 +595,13 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
           excepted[k].push_back(where);
           continue;
         }
+      }
+      // 3D: below the spacing floor (spacing_floor): excepted where no guard named it, so that
+      // cascades the guards miss end
+      if (bad_shape && acute_guard > 0 && floor && floor->below(at, r)) {
+        excepted[k].push_back(floor->nearest_input(at));
+        ++floored[k];
+        continue;
       }
       if (D == 2 && bad_shape) {
         // Ungor's off-centre: on the shortest edge's bisector, no farther from it than the apex
@@ -621,6 +676,36 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       }
     }
   }
+  // 3D: a bad element that encroaches a boundary face whose circumcentre lies in a guard (an acute
+  // vertex's grown ball, a sharp piece's reach) is excepted too, where that guard is, instead of
+  // splitting the face: its split point would land where the shells are (as TetGen does not
+  // split a subface whose circumcentre lies in a protecting ball; modules/refinement/README.md)
+  if constexpr (D == 3) {
+    if (!guarded.empty() || !sharp.empty()) {
+      auto guard_of = [&](const std::array<vertex_id, 3>& F) -> vertex_id {
+        const point<D> u = bp[F[1]] - bp[F[0]], v = bp[F[2]] - bp[F[0]];
+        const point<D> n = cross(u, v);
+        const double nn = dot(n, n);
+        if (!(nn > 0)) return no_vertex;
+        const point<D> m = bp[F[0]] + geometry::triangle_circumcentre_offset(u, v, n, nn);
+        if (const std::size_t g = near_acute(m); g < guarded.size()) return guarded[g].v;
+        if (const std::size_t e = near_sharp(m); e < sharp.size()) return sharp[e].a;
+        return no_vertex;
+      };
+      for (std::size_t k = 0; k < found.size(); ++k) {
+        std::size_t keep = 0;
+        for (std::size_t i = 0; i < found[k].size(); ++i) {
+          const auto& x = found[k][i];
+          vertex_id where = no_vertex;
+          if (x.shape)
+            for (std::uint32_t j = 0; j < x.count && where == no_vertex; ++j) where = guard_of(b.faces[faces[k][x.first + j]]);
+          if (where != no_vertex) excepted[k].push_back(where);
+          else found[k][keep++] = x;
+        }
+        found[k].resize(keep);
+      }
+    }
+  }
   // in order of decreasing circumradius r (ties: by position), each at least `apart` x r from the
   // points taken before it. 3D without small input angles (no acute vertex, no sharp input edge):
   // apart = 0.9, not 1: a circumcentre whose ball holds a point taken before it only in its
@@ -650,6 +735,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
     for (const auto& e : excepted)
       for (vertex_id v : e) ++at[v], ++out.excepted;
     out.excepted_near.assign(at.begin(), at.end());
+    for (auto n : floored) out.below_floor += n;
   }
   const auto shaped = static_cast<std::size_t>(std::count_if(all.begin(), all.end(), [&](const ref& x) { return found[x.chunk][x.index].shape; }));
   out.bad = out.excepted + shaped;
@@ -1417,6 +1503,7 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
   // the conformer stays alive between rounds: each round's boundary work follows the points it
   // adds, not the size of the boundary (conformer::session)
   conformer::session<D> boundary_rounds(p, co);
+  const spacing_floor<D> floor(b, D == 3 ? spacing_floor<D>::default_ratio : 0.0);
   for (;;) {
     std::function<double(const point<D>&)> size;
     if constexpr (D == 2)
@@ -1430,12 +1517,13 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       clock = now;
       return s;
     };
-    auto pl = plan_round(cells, b, bound, o.threads, size, D == 3 ? o.sliver_angle : 0.0, &l, &todo, o.acute_guard, &balls);
+    auto pl = plan_round(cells, b, bound, o.threads, size, D == 3 ? o.sliver_angle : 0.0, &l, &todo, o.acute_guard, &balls, &floor);
     st.plan_seconds += lap();
     st.outside += pl.outside;
     st.bad_left = pl.bad;
     st.excepted = pl.excepted;
     st.excepted_near = pl.excepted_near;
+    st.below_floor = pl.below_floor;
     if (pl.bad == pl.excepted && pl.large == 0) {
       st.converged = true;
       break;
@@ -1482,10 +1570,10 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
 
 template plan<2> plan_round<2>(const cells_by_region<2>&, const conformer::boundary<2>&, double, unsigned,
                                const std::function<double(const point2&)>&, double, const conformer::labelling*,
-                               std::vector<std::vector<char>>*, double, balls_by_region<2>*);
+                               std::vector<std::vector<char>>*, double, balls_by_region<2>*, const spacing_floor<2>*);
 template plan<3> plan_round<3>(const cells_by_region<3>&, const conformer::boundary<3>&, double, unsigned,
                                const std::function<double(const point3&)>&, double, const conformer::labelling*,
-                               std::vector<std::vector<char>>*, double, balls_by_region<3>*);
+                               std::vector<std::vector<char>>*, double, balls_by_region<3>*, const spacing_floor<3>*);
 template bool remesh_cavities<2>(const conformer::boundary<2>&, const conformer::boundary<2>&, const conformer::labelling&,
                                  const conformer::labelling&, cells_by_region<2>&, unsigned, std::size_t*, std::size_t*,
                                  std::vector<std::vector<char>>*, balls_by_region<2>*, runs_by_region<2>*);

@@ -23,6 +23,7 @@
 
 #include "gsse/conformer/conformer.hpp"
 #include "gsse/conformer/regions.hpp"
+#include "gsse/sizing/box_tree.hpp"
 #include "gsse/container/domain.hpp"
 #include "gsse/container/plc.hpp"
 
@@ -46,7 +47,9 @@ struct options {
   std::function<double(const point3&)> size3;
   // 3D small input angles: a bad element whose circumcentre lies within acute_guard x the
   // protecting ball of an acute PLC vertex (the conformer's; shells about it) is excepted: left
-  // as it is and counted (stats::excepted). 0: none
+  // as it is and counted (stats::excepted); so is one near a sharp input edge, one encroaching a
+  // boundary face whose circumcentre lies in such a guard, and one below the spacing floor
+  // (spacing_floor; stats::below_floor). 0: none
   double acute_guard = 1;
   unsigned threads = 1;
   std::function<void(const std::string&)> progress;  // one line per round, may be empty
@@ -64,6 +67,7 @@ struct stats {
   std::size_t split_requests = 0;  // boundary faces split because a circumcentre encroached them
   std::size_t bad_left = 0;        // elements above the bound at the end (0 when it converged)
   std::size_t excepted = 0;        // of those, at a small input angle (see README)
+  std::size_t below_floor = 0;     // of the excepted, those below the spacing floor (spacing_floor)
   // where: per acute PLC vertex (its index in the PLC's points), the elements excepted about it
   std::vector<std::pair<vertex_id, std::size_t>> excepted_near;
   std::size_t outside = 0;         // circumcentres left out because they lie outside every segment
@@ -96,6 +100,33 @@ struct plan {
   std::size_t outside = 0;         // circumcentres outside every segment, not inserted (labels given)
   std::size_t excepted = 0;        // of those, excepted (small input angle)
   std::vector<std::pair<vertex_id, std::size_t>> excepted_near;  // per acute PLC vertex, ascending
+  std::size_t below_floor = 0;     // of the excepted, those below the spacing floor (spacing_floor)
+};
+/// The first boundary's local spacing as a floor (3D): f(x) = min(cap, min over the vertices v of
+/// the boundary the refinement starts from of (nn(v) + |x - v|)), nn(v) the shortest boundary edge
+/// at v and cap the largest nn: positive and 1-Lipschitz, a stand-in for the local feature size
+/// (the conformed boundary's spacing follows the features it had to resolve). A bad element whose
+/// circumradius is below ratio x f(its circumcentre) is excepted and counted (below_floor).
+/// Delaunay refinement at a radius-edge bound below 2, or near input angles under 90 degrees, has
+/// no termination guarantee, and there boundary splits cascaded on CAD input: runs of 60 rounds
+/// and points 3e-12 apart (docs/benchmarks.md, nineteenth part). With the floor, every
+/// circumcentre a round inserts is at least ratio x f from every other point (its circumradius),
+/// and every boundary point split for it at least 1/sqrt 2 of that; f is bounded below: a packing
+/// argument ends the rounds. The circumradius, not the shortest edge: an element with a short
+/// edge and a large ball (a short edge the conformer left, which refinement must grade away from)
+/// is refined as before. 1/64 lies below what converging refinement reaches: the benchmark
+/// structures' meshes and the refinement tests' are unchanged by it.
+template <std::size_t D>
+struct spacing_floor {
+  sizing::box_tree<D> spacing;  // the first boundary's vertices, valued nn(v)
+  sizing::box_tree<D> inputs;   // the PLC points, for reporting where
+  static constexpr double default_ratio = 1.0 / 64;  // docs/benchmarks.md, nineteenth part
+  double ratio = 0;
+  double cap = 0;  // f's cap: the largest nn(v)
+  spacing_floor(const conformer::boundary<D>& b, double ratio);
+  /// Whether an element with circumcentre x and circumradius r is below the floor.
+  bool below(const point<D>& x, double r) const { return r < ratio * cap && r < ratio * spacing.graded_min(x, 1.0, cap); }
+  vertex_id nearest_input(const point<D>& x) const;
 };
 /// A cell's circumball as the cavity search bounds it (see remesh_cavities).
 template <std::size_t D>
@@ -110,7 +141,8 @@ template <std::size_t D>
 plan<D> plan_round(const cells_by_region<D>& cells, const conformer::boundary<D>& b, double ratio_bound, unsigned threads,
                    const std::function<double(const point<D>&)>& size = {}, double sliver_angle = 0,
                    const conformer::labelling* labels = nullptr, std::vector<std::vector<char>>* todo = nullptr,
-                   double acute_guard = 0, balls_by_region<D>* balls = nullptr);
+                   double acute_guard = 0, balls_by_region<D>* balls = nullptr,
+                   const spacing_floor<D>* floor = nullptr);
 
 /// How the refinement meshes (the pipeline's mesh_segments::wrap and ::assemble): every region of
 /// a labelled boundary from scratch (the first mesh, and the fallback when a round's cavities do
