@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "gsse/conformer/conformer.hpp"
@@ -462,6 +463,58 @@ void cavities_match(const plc<D>& p, double size, const std::vector<point<D>>& a
 
 // Re-meshing only the cavities of a round's new points (refinement::remesh_cavities) makes the
 // mesh that meshing every segment again makes, cell for cell, in 3D (the rotated stack) and 2D.
+// The spacing floor is what its header says: f(x) = min(cap, min over the boundary's vertices v
+// of nn(v) + |x - v|), nn(v) the shortest boundary edge at v, cap the largest nn; below(x, r)
+// holds exactly when r < ratio x f(x). Checked against a brute-force f on the rotated stack's
+// conformed boundary, at its vertices and at points around it; f is 1-Lipschitz there.
+BOOST_AUTO_TEST_CASE(spacing_floor_is_the_boundary_spacing_extended) {
+  const auto p = stack(1, {0, 0.4, 0.5, 1}, true);
+  conformer::options co;
+  co.size = 0.3;
+  const auto b = conformer::conform(p, {}, co);
+  const double ratio = refinement::spacing_floor<3>::default_ratio;
+  const refinement::spacing_floor<3> floor(b, ratio);
+  std::vector<double> nn(b.points.size(), std::numeric_limits<double>::infinity());
+  for (const auto& F : b.faces)
+    for (std::size_t i = 0; i < 3; ++i) {
+      const double l = distance(b.points[F[i]], b.points[F[(i + 1) % 3]]);
+      nn[F[i]] = std::min(nn[F[i]], l), nn[F[(i + 1) % 3]] = std::min(nn[F[(i + 1) % 3]], l);
+    }
+  double cap = 0;
+  for (double v : nn)
+    if (std::isfinite(v)) cap = std::max(cap, v);
+  BOOST_TEST(floor.cap == cap);
+  auto f = [&](const point3& x) {
+    double best = cap;
+    for (std::size_t v = 0; v < nn.size(); ++v)
+      if (std::isfinite(nn[v])) best = std::min(best, nn[v] + distance(x, b.points[v]));
+    return best;
+  };
+  std::vector<point3> at;
+  for (std::size_t v = 0; v < b.points.size(); v += 7) at.push_back(b.points[v]);
+  for (int i = 0; i < 200; ++i)  // a fixed scatter over the stack's box and beyond
+    at.push_back(turn(point3{-0.2 + 1.4 * ((i * 37) % 101) / 100.0, -0.2 + 1.4 * ((i * 53) % 97) / 96.0, -0.2 + 1.4 * ((i * 71) % 89) / 88.0}));
+  std::size_t below = 0, above = 0;
+  for (const auto& x : at) {
+    const double fx = f(x);
+    BOOST_TEST(floor.spacing.graded_min(x, 1.0, floor.cap) == fx, boost::test_tools::tolerance(1e-12));
+    // just under and just over the floor
+    BOOST_TEST(floor.below(x, ratio * fx * (1 - 1e-9)));
+    BOOST_TEST(!floor.below(x, ratio * fx * (1 + 1e-9)));
+    below += fx < cap, above += fx == cap;
+  }
+  BOOST_TEST(below > 0u);  // the scatter meets both the graded part and the cap
+  BOOST_TEST(above > 0u);
+  // f is 1-Lipschitz between the sample points
+  for (std::size_t i = 0; i + 1 < at.size(); ++i) BOOST_TEST(std::abs(f(at[i]) - f(at[i + 1])) <= distance(at[i], at[i + 1]) * (1 + 1e-12));
+  // the nearest input point, for the reports, is a PLC point at the least distance
+  for (std::size_t i = 0; i < at.size(); i += 10) {
+    const auto v = floor.nearest_input(at[i]);
+    BOOST_TEST_REQUIRE(v < b.plc_points);
+    for (std::size_t u = 0; u < b.plc_points; ++u) BOOST_TEST(distance(at[i], b.points[v]) <= distance(at[i], b.points[u]) * (1 + 1e-9));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(cavities_match_a_full_meshing) {
   cavities_match<3>(stack(1, {0, 0.5, 1}, true), 0.15,
                     {turn(point3{0.5, 0.5, 0.25}), turn(point3{0.21, 0.73, 0.77}), turn(point3{0.8, 0.3, 0.6})}, {0, 500});
