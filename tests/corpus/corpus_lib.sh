@@ -72,25 +72,32 @@ mesh_once() {  # name input poly mode [gsse-mesh options...]
   [[ "$verdict" == PASS* ]]
 }
 
+# Reads the input as a PLC into $WORK/NAME/plc.poly (--plc-out); if that fails, writes the
+# READ-ERROR line and counts all `runs` of the case as failed, and returns 1.
+read_case() {  # name input runs
+  local name=$1 input=$2 runs=$3 dir=$WORK/$1
+  mkdir -p "$dir"
+  echo "$runs" > "$dir/runs"
+  timeout -k 5 "$TIMEOUT" "$MESH" "$input" --plc-out "$dir/plc.poly" > "$dir/read.out" 2>&1 && return 0
+  printf '%-28s %-14s %8s %9s %7s %7s  %s\n' "$name" "read" - - - - \
+    "READ-ERROR: $(head -1 "$dir/read.out" | sed "s|^gsse-mesh: error: ||; s|$input|${input##*/}|g" | cut -c1-160)" > "$dir/result"
+  echo "$runs" > "$dir/failed"
+  return 1
+}
+
 # Reads the input as a PLC (--plc-out) and meshes it plain and at the bounding-box diagonal / 20,
 # or at `size` when given. Writes its lines to $WORK/NAME/result and the number of failed runs to
 # $WORK/NAME/failed.
 mesh_case() {  # name input [size]
   local name=$1 input=$2 size=${3:-}
-  local dir=$WORK/$name; mkdir -p "$dir"
-  local poly=$dir/plc.poly failed=0
-  if ! timeout -k 5 "$TIMEOUT" "$MESH" "$input" --plc-out "$poly" > "$dir/read.out" 2>&1; then
-    printf '%-28s %-14s %8s %9s %7s %7s  %s\n' "$name" "read" - - - - \
-      "READ-ERROR: $(head -1 "$dir/read.out" | sed "s|^gsse-mesh: error: ||; s|$input|${input##*/}|g" | cut -c1-160)" > "$dir/result"
-    echo 2 > "$dir/failed"
-    return
-  fi
+  local dir=$WORK/$name poly=$WORK/$name/plc.poly failed=0
+  read_case "$name" "$input" 2 || return
   [ -n "$size" ] || size=$(size_of "$poly")
   {
     mesh_once "$name" "$input" "$poly" plain || failed=$((failed + 1))
     mesh_once "$name" "$input" "$poly" "size=$size" --size "$size" || failed=$((failed + 1))
   } > "$dir/result"
-  echo $failed > "$dir/failed"; echo 2 > "$dir/runs"
+  echo $failed > "$dir/failed"
 }
 
 print_header() {
@@ -103,7 +110,7 @@ report() {  # names...
   print_header
   for n in "$@"; do
     cat "$WORK/$n/result"
-    runs=$((runs + $(cat "$WORK/$n/runs" 2>/dev/null || echo 2))); bad=$((bad + $(cat "$WORK/$n/failed")))
+    runs=$((runs + $(cat "$WORK/$n/runs"))); bad=$((bad + $(cat "$WORK/$n/failed")))
   done
   echo "$((runs - bad)) passed, $bad failed"
   [ $bad = 0 ]
@@ -112,18 +119,13 @@ report() {  # names...
 # Reads the input as a PLC and meshes it once with --quality BOUND (3D radius-edge): the run must
 # pass as mesh_once's do (exit 0 with the library verifier, meshcheck where ../shared has it) and
 # the refinement must have converged: every element above the bound excepted and counted (small
-# input angles, the spacing floor; modules/refinement/README.md). Writes its line to
+# input angles, the spacing floor; modules/refinement/README.md). Writes its lines to
 # $WORK/NAME/result and 1 or 0 to $WORK/NAME/failed.
 quality_case() {  # name input bound
   local name=$1 input=$2 bound=$3
-  local dir=$WORK/$name; mkdir -p "$dir"
-  local poly=$dir/plc.poly line verdict py=/usr/bin/python3
+  local dir=$WORK/$name poly=$WORK/$name/plc.poly line verdict py=/usr/bin/python3
   [ -x $py ] || py=python3
-  if ! timeout -k 5 "$TIMEOUT" "$MESH" "$input" --plc-out "$poly" > "$dir/read.out" 2>&1; then
-    printf '%-28s %-14s %s\n' "$name" read "READ-ERROR: $(head -1 "$dir/read.out" | cut -c1-160)" > "$dir/result"
-    echo 1 > "$dir/failed"; echo 1 > "$dir/runs"
-    return
-  fi
+  read_case "$name" "$input" 1 || return
   if line=$(mesh_once "$name" "$input" "$poly" "quality=$bound" --quality "$bound"); then
     verdict=$($py - "$dir/quality=$bound/stats.json" <<'PY'
 import json, sys
@@ -139,5 +141,4 @@ PY
     echo "$line" > "$dir/result"
     echo 1 > "$dir/failed"
   fi
-  echo 1 > "$dir/runs"
 }

@@ -23,9 +23,9 @@
 
 #include "gsse/conformer/conformer.hpp"
 #include "gsse/conformer/regions.hpp"
-#include "gsse/sizing/box_tree.hpp"
 #include "gsse/container/domain.hpp"
 #include "gsse/container/plc.hpp"
+#include "gsse/sizing/box_tree.hpp"
 
 namespace gsse::refinement {
 
