@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Copies ../shared's meshcheck source to OUT and applies three fixes for floating-point artefacts
+"""Copies ../shared's meshcheck source to OUT and applies four fixes for floating-point artefacts
 it shows on slanted facets (see docs/benchmarks.md, "meshcheck on slanted facets"):
 
 1. A face whose share of a coplanar facet is a rounding sliver (within 1e-9 of the face plus fix
@@ -16,6 +16,12 @@ it shows on slanted facets (see docs/benchmarks.md, "meshcheck on slanted facets
    perimeter. A thin face (1e-3 by 2e-5) at coordinates 280 whose vertex is rounded one ulp off a
    slanted edge leaves its facet by a sliver of 2e-9 of its area, over the relative 1e-9 alone.
    The library verifier uses the same slack (modules/verify, rounding_slack).
+4. A mesh vertex counts as near a facet when it lies within 8 ulps of its largest coordinate of an
+   edge of the facet, in 3D, even if its projection falls just outside the facet's region. Without
+   this a Steiner point on a slanted edge between two facets at 176 degrees, rounded 7e-15 across
+   the edge (coordinates 280), lies in neither facet's projected region, is classed as on no facet,
+   and every face at it is reported as "on no input facet" (occ_pump_nut at --quality 1.414). The
+   face's area shares still decide whether it leaves the facet.
 
 Every fix asserts the text it replaces, so a changed meshcheck stops this script instead of being
 patched blindly. Files already in OUT with the same content are not rewritten (no rebuild).
@@ -102,6 +108,32 @@ fixes += [
      """      if (std::fabs(err) <= kRelTol + cv.slack) ++boundingCovered;  // gsse fix 3"""),
     ("""      if (std::fabs(err) <= kRelTol) ++internalRespected;""",
      """      if (std::fabs(err) <= kRelTol + cv.slack) ++internalRespected;  // gsse fix 3"""),
+]
+fixes += [
+    ("""enum On { kOff = 0, kNear = 1, kExact = 2 };""",
+     """enum On { kOff = 0, kNear = 1, kExact = 2 };
+
+// gsse fix 4: whether p lies within what rounding of a coordinate can do (8 ulps of the largest
+// magnitude involved) of an edge of facet f, in 3D
+static bool nearFacetBoundary(const Plc& plc, const Facet& f, const Vec& p) {
+  for (const auto& poly : f.polys)
+    for (size_t k = 0; poly.size() > 1 && k < poly.size(); ++k) {
+      if (poly.size() == 2 && k == 1) break;
+      const Vec &a = plc.pts[poly[k]], &b = plc.pts[poly[(k + 1) % poly.size()]];
+      double mag = 0;
+      for (int i = 0; i < 3; ++i) mag = std::max({mag, std::fabs(p[i]), std::fabs(a[i]), std::fabs(b[i])});
+      const Vec d = sub(b, a);
+      const double len2 = dot(d, d);
+      const double t = len2 > 0 ? std::clamp(dot(sub(p, a), d) / len2, 0.0, 1.0) : 0.0;
+      const Vec c{a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]};
+      if (norm(sub(p, c)) <= 8 * std::numeric_limits<double>::epsilon() * mag) return true;
+    }
+  return false;
+}"""),
+    ("""  if (!inFacetRegion(f, v)) return kOff;
+  return coplanar ? kExact : kNear;""",
+     """  if (!inFacetRegion(f, v)) return nearFacetBoundary(plc, f, v) ? kNear : kOff;  // gsse fix 4
+  return coplanar ? kExact : kNear;"""),
 ]
 for old, new in fixes:
     if text.count(old) != 1:
