@@ -4,7 +4,7 @@
 # (--plc-out). Every run prints one line: case, mode, vertices, tets, Steiner points, wall time,
 # verdict. Needs: $MESH (gsse-mesh), $WORK (scratch folder), $MC (meshcheck or empty), $TIMEOUT.
 
-# meshcheck from ../shared, built once into /tmp ($MC), and the same with the two fixes of
+# meshcheck from ../shared, built once into /tmp ($MC), and the same with the fixes of
 # tests/support/meshcheck_fixed.py for its floating-point artefacts on slanted facets ($MCF);
 # both empty (and a note) without ../shared
 find_meshcheck() {  # src

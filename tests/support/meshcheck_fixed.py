@@ -36,6 +36,7 @@ os.makedirs(out, exist_ok=True)
 
 def put(name, data):
     path = os.path.join(out, name)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
     if os.path.exists(path) and open(path, "rb").read() == data:
         return
     with open(path, "wb") as f:
@@ -45,6 +46,14 @@ def put(name, data):
 
 for name in ("CMakeLists.txt", "build.sh", "README.md"):
     put(name, open(os.path.join(src, name), "rb").read())
+# meshcheck's own hand-made cases (tests/run.sh builds with ../build.sh and asserts each verdict):
+# the test meshcheck_fixed_cases runs them on the fixed copy, so the fixes cannot pass a case
+# meshcheck as shipped fails
+tests = os.path.join(src, "tests")
+if os.path.isdir(tests):
+    for name in sorted(os.listdir(tests)):
+        if os.path.isfile(os.path.join(tests, name)):
+            put(os.path.join("tests", name), open(os.path.join(tests, name), "rb").read())
 text = open(os.path.join(src, "meshcheck.cpp")).read()
 fixes = [
     ("""  Poly tri;
