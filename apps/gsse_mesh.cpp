@@ -223,6 +223,8 @@ int run(const gsse::plc<D>& p, const args& a) {
                 q.min_ratio, q.median_ratio, q.max_ratio, D == 3 ? "dihedral" : "plane", q.min_angle, q.max_angle);
     std::printf("           %zu elements with an angle below 5 degrees, %zu below 10, %zu above 170\n", q.below5, q.below10,
                 q.above170);
+    if (const double in = gsse::shortest_input_edge(p); in > 0)
+      std::printf("           shortest edge %.4g, %.3g times the input's shortest (%.4g)\n", q.shortest_edge, q.shortest_edge / in, in);
     std::printf("           radius-edge");
     for (std::size_t k = 0; k < q.ratio_histogram.size(); ++k) {
       if (k < q.ratio_bounds.size())
@@ -271,7 +273,8 @@ int run(const gsse::plc<D>& p, const args& a) {
     js << "]}, \"angle\": {\"min\": " << q.min_angle << ", \"max\": " << q.max_angle << ", \"below_5\": " << q.below5
        << ", \"below_10\": " << q.below10 << ", \"above_170\": " << q.above170 << ", \"smallest_by_10_degrees\": [";
     for (std::size_t k = 0; k < q.angle_histogram.size(); ++k) js << (k ? ", " : "") << q.angle_histogram[k];
-    js << "]}, \"uniform_size\": " << (r.uniform_size ? "true" : "false")
+    js << "]}, \"edges\": {\"shortest\": " << q.shortest_edge << ", \"shortest_input\": " << gsse::shortest_input_edge(p)
+       << "}, \"uniform_size\": " << (r.uniform_size ? "true" : "false")
        << ", \"min_size\": " << r.min_size;
     if (r.quality) {
       js << ", \"refinement\": {\"bound\": " << gsse::refinement::ratio_bound(D, a.quality_bound) << ", \"converged\": "

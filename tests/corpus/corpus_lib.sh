@@ -1,7 +1,8 @@
 # Shared by corpus_mesh.sh and rotated_structures.sh (sourced): one case = one input meshed twice,
 # plain and with --size, each by gsse-mesh with the library verifier under a timeout and, where
 # ../shared has it, checked by the independent meshcheck against the PLC as gsse-mesh read it
-# (--plc-out). Every run prints one line: case, mode, vertices, tets, Steiner points, wall time,
+# (--plc-out); and no mesh edge may be shorter than 1e-5 of the input's shortest edge (--stats
+# "edges"). Every run prints one line: case, mode, vertices, tets, Steiner points, wall time,
 # verdict. Needs: $MESH (gsse-mesh), $WORK (scratch folder), $MC (meshcheck or empty), $TIMEOUT.
 
 # meshcheck from ../shared, built once into /tmp ($MC), and the same with the fixes of
@@ -52,6 +53,18 @@ mesh_once() {  # name input poly mode [gsse-mesh options...]
     v=$(grep -o '"points": [0-9]*' "$dir/stats.json" | head -1 | grep -o '[0-9]*$')
     t=$(grep -o '"cells": [0-9]*' "$dir/stats.json" | awk '{s += $2} END {print s + 0}')
     s=$(grep -o '"steiner": [0-9]*' "$dir/stats.json" | grep -o '[0-9]*$')
+  fi
+  # no two points much closer than the input's own shortest edge: the closest the corpus has is
+  # 4.9e-5 of it (occ_hammer at the diagonal / 20; 6.3e-5 at --quality 1.414, scad_example001);
+  # before a rotation's image was kept off existing points, 2.4e-6 and 4.7e-7 (docs/benchmarks.md,
+  # twenty-first part)
+  if [ $rc = 0 ] && [ -f "$dir/stats.json" ]; then
+    local ratio
+    ratio=$(tr -d '\n' < "$dir/stats.json" | grep -o '"edges": {[^}]*}' | awk -F'[:,}]' '{ if ($5 > 0) printf "%.3g", $3 / $5 }')
+    if [ -n "$ratio" ] && awk -v r="$ratio" 'BEGIN { exit !(r < 1e-5) }'; then
+      verdict="POINTS TOO CLOSE: shortest edge $ratio of the input's shortest"
+      rc=4
+    fi
   fi
   if [ $rc = 0 ] && [ -n "$MC" ]; then
     # meshcheck as shipped; where it fails, the run passes only if the fixed meshcheck passes (the
@@ -129,10 +142,11 @@ quality_case() {  # name input bound
   if line=$(mesh_once "$name" "$input" "$poly" "quality=$bound" --quality "$bound"); then
     verdict=$($py - "$dir/quality=$bound/stats.json" <<'PY'
 import json, sys
-r = json.load(open(sys.argv[1]))["quality"]["refinement"]
+q = json.load(open(sys.argv[1]))["quality"]
+r, e = q["refinement"], q["edges"]
 ok = r["converged"] and r["above_bound"] == r["excepted"]
-print(("" if ok else "NOT CONVERGED: ") + "%d rounds, %d above the bound, %d excepted (%d below the floor)"
-      % (r["rounds"], r["above_bound"], r["excepted"], r.get("below_floor", 0)))
+print(("" if ok else "NOT CONVERGED: ") + "%d rounds, %d above the bound, %d excepted (%d below the floor), shortest edge %.2g of the input's"
+      % (r["rounds"], r["above_bound"], r["excepted"], r.get("below_floor", 0), e["shortest"] / e["shortest_input"]))
 PY
 )
     printf '%s\n%-28s %-14s %s\n' "$line" "" "" "$verdict" > "$dir/result"

@@ -7,7 +7,8 @@
 # With GSSE_CORPUS_QUALITY=B (the test corpus_quality: 1.414) every case is meshed once with
 # --quality B instead (3D radius-edge bound, no dihedral angle below 5 degrees), checked the same
 # way, and the refinement must converge: every element left above the bound excepted and counted
-# (corpus_lib.sh, quality_case); a second line per case gives rounds and exceptions.
+# (corpus_lib.sh, quality_case); a second line per case gives rounds, exceptions and the shortest
+# mesh edge against the input's (every run: at least 1e-5 of it, corpus_lib.sh).
 # usage: corpus_mesh.sh GSSE_MESH SOURCE_DIR [NAME...]
 #   GSSE_CORPUS_TIMEOUT seconds per run (default 60, with a quality bound 120), GSSE_CORPUS_JOBS
 #   cases at once (default 2), GSSE_CORPUS_WORK keeps the inputs, meshes and logs in that folder

@@ -167,11 +167,12 @@ BOOST_AUTO_TEST_CASE(verifier_detects_a_broken_mesh) {
   BOOST_TEST(q.elements == ncells);
   // the angles and radius-edge ratios recomputed here, triangle by triangle (law of cosines and
   // R = abc / 4A, apart from measure()'s code)
-  double lo = 180, hi = 0, rmin = 1e300, rmax = 0;
+  double lo = 180, hi = 0, rmin = 1e300, rmax = 0, shortest = 1e300;
   for (const auto& s : d.segments())
     for (const auto& c : s.cell_data()) {
       const auto& P = d.points();
       const double a = distance(P[c[1]], P[c[2]]), bb = distance(P[c[0]], P[c[2]]), e = distance(P[c[0]], P[c[1]]);
+      shortest = std::min({shortest, a, bb, e});
       for (auto [x, y, z] : {std::array{a, bb, e}, std::array{bb, e, a}, std::array{e, a, bb}}) {
         const double deg = std::acos(std::clamp((y * y + z * z - x * x) / (2 * y * z), -1.0, 1.0)) * 180 / std::numbers::pi;
         lo = std::min(lo, deg), hi = std::max(hi, deg);
@@ -184,6 +185,7 @@ BOOST_AUTO_TEST_CASE(verifier_detects_a_broken_mesh) {
   BOOST_TEST(q.max_angle == hi, boost::test_tools::tolerance(1e-6));
   BOOST_TEST(q.min_ratio == rmin, boost::test_tools::tolerance(1e-6));
   BOOST_TEST(q.max_ratio == rmax, boost::test_tools::tolerance(1e-6));
+  BOOST_TEST(q.shortest_edge == shortest);
 }
 
 BOOST_AUTO_TEST_CASE(closed_surface_becomes_one_named_segment) {

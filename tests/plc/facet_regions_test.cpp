@@ -78,6 +78,21 @@ BOOST_AUTO_TEST_CASE(embedded_edges_and_points) {
   BOOST_CHECK_THROW(in::facet_regions(out.p), in::input_error);
 }
 
+BOOST_AUTO_TEST_CASE(shortest_input_edge_counts_polygon_sides_and_embedded_edges_not_points) {
+  builder b;
+  b.facet({square(0, 4), {{1, 1, 0}, {1, 1.5, 0}}, {{2, 3, 0}}});  // an embedded edge of 0.5
+  BOOST_TEST(shortest_input_edge(b.p) == 0.5);
+  b.facet({std::vector<point3>{{0, 0, 0}, {4, 0, 0}, {4, 0.25, 2}}});  // a triangle, sides 4, sqrt(4.0625), sqrt(20.0625)
+  BOOST_TEST(shortest_input_edge(b.p) == 0.5);
+  b.facet({std::vector<point3>{{10, 0, 0}, {10.125, 0, 0}, {10, 1, 0}}});  // a side of 0.125
+  BOOST_TEST(shortest_input_edge(b.p) == 0.125);
+  plc<2> two;
+  two.points = {{0, 0}, {3, 0}, {3, 0.75}};
+  two.edges = {{0, 1}, {1, 2}};
+  BOOST_TEST(shortest_input_edge(two) == 0.75);
+  BOOST_TEST(shortest_input_edge(plc<2>{}) == 0.0);
+}
+
 BOOST_AUTO_TEST_CASE(planar_within_the_tolerance_and_no_further) {
   // a quad turned by a generic rotation: its corners are coplanar up to rounding only
   const double a = 0.7, c = std::cos(a), s = std::sin(a);

@@ -294,18 +294,21 @@ class state {
     return it->second;
   }
 
-  /// True if a point lies within 1e-8 * scale of q (scale: the size of the element q splits), or
-  /// within 1e-11 of the model size. A split point there would be the same point (an encroacher
-  /// rotated onto its image of an earlier split, an ulp away): it would not end the
-  /// encroachment, and the next round would make it again; and a slanted facet's plane
-  /// coordinates (rounded once, front::wrap_frame) cannot tell points that close apart. The split
-  /// point is a construction, so this bound decides no topology.
-  bool occupied(const point<D>& q, double scale) const {
-    const double r = std::max(1e-8 * scale, 1e-11 * model_size_);
+  /// True if a point lies within ratio * scale of q (scale: the size of the element q splits), or
+  /// within 1e-11 of the model size. With ratio 1e-8, a split point there would be the same point
+  /// (an encroacher rotated onto its image of an earlier split, an ulp away): it would not end the
+  /// encroachment, and the next round would make it again; and a slanted facet's plane coordinates
+  /// (rounded once, front::wrap_frame) cannot tell points that close apart. The split point is a
+  /// construction, so this bound decides no topology.
+  bool occupied(const point<D>& q, double scale, double ratio = 1e-8) const {
+    const double r = std::max(ratio * scale, 1e-11 * model_size_);
     point<D> lo, hi;
     for (std::size_t k = 0; k < D; ++k) lo[k] = q[k] - r, hi[k] = q[k] + r;
     return !grid_.for_box(lo, hi).visit(lo, hi, [&](vertex_id y) { return squared_distance(out_.points[y], q) > r * r; });
   }
+  /// occupied(q, scale, near_ratio): a point beside q, closer than this fraction of the local
+  /// scale (conform_facets, rotations' images)
+  static constexpr double near_ratio = 1e-3;
 
   /// The angle below which an input angle is small (acute_): 60 degrees in 2D, where Ruppert's
   /// proof covers every angle from 60 up; 62 in 3D, where no theory covers angles between 60 and
@@ -1961,6 +1964,21 @@ class state3 : public state<3> {
       const double scale = std::sqrt(std::min({squared_distance(p[T[0]], p[T[1]]), squared_distance(p[T[1]], p[T[2]]),
                                                squared_distance(p[T[2]], p[T[0]])}));
       if (occupied(s.sub ? s.m : s.at, scale)) s = plan_split(todo[k]);  // made by a split of this phase
+      // a rotation's image beside an existing point (closer than near_ratio of the subfacet's
+      // shortest edge, not on it): two encroachers at one place along the shared edge (or in one
+      // direction from the shared vertex) but on different shells, or one off the shells (a
+      // circumcentre), snap to one image, and the second lands a hair from the first (occ_hammer:
+      // edges down to 1e-5 of its shortest input edge; at --quality 1.414 307 below 1e-4 of it).
+      // The subfacet is split at its circumcentre instead, as one no vertex encroaches would be,
+      // where that point is clear. Projections keep their point: with them too, occ_pump_nut at
+      // --quality 1.414 ended with 2.2 times the points (docs/benchmarks.md, twenty-first part)
+      if (!s.claim && !s.sub && s.fired &&
+          (*s.fired == rules::split_action::rotate_edge || *s.fired == rules::split_action::rotate_vertex) &&
+          !occupied(s.at, scale) && occupied(s.at, scale, near_ratio)) {
+        auto c = todo[k];
+        c.y = no_vertex;
+        if (split_plan m = plan_split(c); !occupied(m.sub ? m.m : m.at, scale, near_ratio)) s = m;
+      }
       if (occupied(s.sub ? s.m : s.at, scale)) {
         auto c = todo[k];
         c.flat = true;

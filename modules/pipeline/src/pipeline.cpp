@@ -877,6 +877,7 @@ quality measure(const domain<D>& d, unsigned threads) {
   for_each(execution::par(threads), ids, [&](std::size_t k) {
     quality& q = part[k];
     q.min_angle = 180;
+    q.shortest_edge = std::numeric_limits<double>::infinity();
     auto& ratios = part_ratios[k];
     ratios.reserve(pieces[k].size());
     for (const auto& c : pieces[k]) {
@@ -903,6 +904,7 @@ quality measure(const domain<D>& d, unsigned threads) {
         r = std::sqrt(dot(cc, cc));
         std::tie(most, least) = geometry::dihedral_cosines(p, c);
       }
+      q.shortest_edge = std::min(q.shortest_edge, shortest);
       const double lo = std::min(180.0, std::acos(most) * rad), hi = std::max(0.0, std::acos(least) * rad);
       q.min_angle = std::min(q.min_angle, lo), q.max_angle = std::max(q.max_angle, hi);
       q.below5 += lo < 5, q.below10 += lo < 10, q.above170 += hi > 170;
@@ -916,16 +918,19 @@ quality measure(const domain<D>& d, unsigned threads) {
   }, [&](std::size_t k) { return static_cast<double>(pieces[k].size()); });
   quality q;
   q.min_angle = 180;
+  q.shortest_edge = std::numeric_limits<double>::infinity();
   std::vector<double> ratios;
   for (std::size_t k = 0; k < part.size(); ++k) {
     const quality& x = part[k];
     q.min_angle = std::min(q.min_angle, x.min_angle), q.max_angle = std::max(q.max_angle, x.max_angle);
+    q.shortest_edge = std::min(q.shortest_edge, x.shortest_edge);
     q.below5 += x.below5, q.below10 += x.below10, q.above170 += x.above170;
     for (std::size_t i = 0; i < q.angle_histogram.size(); ++i) q.angle_histogram[i] += x.angle_histogram[i];
     for (std::size_t i = 0; i < q.ratio_histogram.size(); ++i) q.ratio_histogram[i] += x.ratio_histogram[i];
     ratios.insert(ratios.end(), part_ratios[k].begin(), part_ratios[k].end());
   }
   q.elements = ratios.size();
+  if (ratios.empty()) q.shortest_edge = 0;
   if (!ratios.empty()) {
     // the median as a full sort would place it; the extremes
     const auto [lo, hi] = std::minmax_element(ratios.begin(), ratios.end());

@@ -114,6 +114,7 @@ struct mesh_segments {
 struct quality {
   double min_ratio = 0, median_ratio = 0, max_ratio = 0;
   double min_angle = 0, max_angle = 0;
+  double shortest_edge = 0;  // the shortest edge of any element
   std::size_t elements = 0;
   // elements with an angle (dihedral in 3D, plane in 2D) below 5 or 10 degrees, or above 170
   std::size_t below5 = 0, below10 = 0, above170 = 0;
