@@ -198,6 +198,7 @@ int run(const gsse::plc<D>& p, const args& a) {
     std::fprintf(stderr, "gsse-mesh: warning: quality refinement stopped by a failed %s; the mesh is the round before, %zu elements above the bound\n",
                  r.refinement.failure.c_str(), r.refinement.bad_left);
   const auto q = (!a.quiet || !a.stats.empty()) ? gsse::pipeline::measure(d, a.threads) : gsse::pipeline::quality{};
+  const double shortest_in = gsse::shortest_input_edge(p);
   if (!a.quiet) {
     std::printf("%s: %zuD, %zu points (%zu volume, %zu dropped outside, %zu boundary Steiner), %zu segments\n",
                 p.source.c_str(), D, d.points().size(), r.volume_points, r.dropped_points, r.steiner, d.segments().size());
@@ -223,8 +224,9 @@ int run(const gsse::plc<D>& p, const args& a) {
                 q.min_ratio, q.median_ratio, q.max_ratio, D == 3 ? "dihedral" : "plane", q.min_angle, q.max_angle);
     std::printf("           %zu elements with an angle below 5 degrees, %zu below 10, %zu above 170\n", q.below5, q.below10,
                 q.above170);
-    if (const double in = gsse::shortest_input_edge(p); in > 0)
-      std::printf("           shortest edge %.4g, %.3g times the input's shortest (%.4g)\n", q.shortest_edge, q.shortest_edge / in, in);
+    if (shortest_in > 0)
+      std::printf("           shortest edge %.4g, %.3g times the input's shortest (%.4g)\n", q.shortest_edge,
+                  q.shortest_edge / shortest_in, shortest_in);
     std::printf("           radius-edge");
     for (std::size_t k = 0; k < q.ratio_histogram.size(); ++k) {
       if (k < q.ratio_bounds.size())
@@ -273,7 +275,7 @@ int run(const gsse::plc<D>& p, const args& a) {
     js << "]}, \"angle\": {\"min\": " << q.min_angle << ", \"max\": " << q.max_angle << ", \"below_5\": " << q.below5
        << ", \"below_10\": " << q.below10 << ", \"above_170\": " << q.above170 << ", \"smallest_by_10_degrees\": [";
     for (std::size_t k = 0; k < q.angle_histogram.size(); ++k) js << (k ? ", " : "") << q.angle_histogram[k];
-    js << "]}, \"edges\": {\"shortest\": " << q.shortest_edge << ", \"shortest_input\": " << gsse::shortest_input_edge(p)
+    js << "]}, \"edges\": {\"shortest\": " << q.shortest_edge << ", \"shortest_input\": " << shortest_in
        << "}, \"uniform_size\": " << (r.uniform_size ? "true" : "false")
        << ", \"min_size\": " << r.min_size;
     if (r.quality) {

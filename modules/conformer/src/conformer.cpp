@@ -1971,7 +1971,7 @@ class state3 : public state<3> {
       // edges down to 1e-5 of its shortest input edge; at --quality 1.414 307 below 1e-4 of it).
       // The subfacet is split at its circumcentre instead, as one no vertex encroaches would be,
       // where that point is clear. Projections keep their point: with them too, occ_pump_nut at
-      // --quality 1.414 ended with 2.2 times the points (docs/benchmarks.md, twenty-first part)
+      // --quality 1.414 ended with 2.2 times the points (README.md here, Known limitations)
       if (!s.claim && !s.sub && s.fired &&
           (*s.fired == rules::split_action::rotate_edge || *s.fired == rules::split_action::rotate_vertex) &&
           !occupied(s.at, scale) && occupied(s.at, scale, near_ratio)) {
