@@ -409,13 +409,20 @@ std::vector<std::vector<std::array<vertex_id, D + 1>>> canonical(refinement::cel
 /// Meshes p, resumes its boundary with `added` points and the faces `split` split, and checks
 /// that re-meshing only the cavities gives exactly the cells a meshing from scratch gives.
 template <std::size_t D>
-void cavities_match(const plc<D>& p, double size, const std::vector<point<D>>& added, std::vector<std::size_t> split) {
+void cavities_match(const plc<D>& p, double size, const std::vector<point<D>>& added, std::vector<std::size_t> split,
+                    std::size_t split_source = no_vertex) {
   conformer::options co;
   co.size = size;
   const auto b = conformer::conform(p, {}, co);
   const auto l = conformer::label(b, p, 1);
   auto cells = pl::mesh_segments<D>::wrap(b, l, 1);
   for (auto& f : split) f = f * b.faces.size() / 1000;
+  // and the first face of a given source (a facet inside a segment: both its sides re-meshed)
+  for (std::size_t f = 0; split_source != no_vertex && f < b.faces.size(); ++f)
+    if (b.face_source[f] == split_source) {
+      split.push_back(f);
+      break;
+    }
   const auto c = conformer::resume(p, b, added, split, co);
   const auto lc = conformer::label(c, p, 1);
   // the labels carried from the boundary before (each facet's or edge's sides) are label()'s
@@ -519,6 +526,36 @@ BOOST_AUTO_TEST_CASE(cavities_match_a_full_meshing) {
   cavities_match<3>(stack(1, {0, 0.5, 1}, true), 0.15,
                     {turn(point3{0.5, 0.5, 0.25}), turn(point3{0.21, 0.73, 0.77}), turn(point3{0.8, 0.3, 0.6})}, {0, 500});
   cavities_match<2>(device2d(), 0.15, {point2{1.03, 0.41}, point2{3.1, 0.57}, point2{2.02, 1.31}}, {0, 400, 800});
+}
+
+// A facet inside one segment (a baffle, as Gmsh models embed them; gmsh_indheat has one): the
+// segment lies on both of its sides. Cavities that reach both sides keep it apart, a split of it
+// re-meshes both sides (until this was handled every round of gmsh_indheat at --quality 1.414
+// fell back to meshing every segment whole, 25 of 25).
+BOOST_AUTO_TEST_CASE(cavities_on_both_sides_of_a_facet_inside_a_segment) {
+  for (bool rotated : {false, true}) {
+    auto p = stack(1, {0, 1});
+    const auto first = static_cast<vertex_id>(p.points.size());
+    for (auto [x, y] : {std::pair{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}, {0.25, 0.75}}) p.points.push_back({x, y, 0.5});
+    plc_facet baffle;
+    baffle.polygons.push_back({first, first + 1, first + 2, first + 3});
+    p.facets.push_back(baffle);
+    p.regions[0].at = {0.1, 0.1, 0.1};
+    auto at = [&](point3 q) { return rotated ? turn(q) : q; };
+    if (rotated) {
+      for (auto& q : p.points) q = turn(q);
+      for (auto& r : p.regions) r.at = turn(r.at);
+    }
+    // points whose balls reach across the baffle (just above and below it), and one apart
+    cavities_match<3>(p, 0.15, {at({0.47, 0.52, 0.53}), at({0.61, 0.38, 0.46}), at({0.2, 0.8, 0.15})}, {0}, p.facets.size() - 1);
+    pl::report r;
+    auto o = quality_options(1.414, 2, 0.15);
+    o.graded = false;
+    const auto d = pl::mesh(p, {}, o, r);
+    BOOST_TEST(r.problems.empty());
+    BOOST_TEST(r.refinement.converged);
+    BOOST_TEST(r.refinement.full_remeshes == 0u, (rotated ? "rotated: " : "") << r.refinement.full_remeshes << " full meshings");
+  }
 }
 
 // The benchmark structures (../shared): 2D MOSFET at 33 degrees, 3D diffusion at 1.414.

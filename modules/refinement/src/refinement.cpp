@@ -1139,6 +1139,18 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     bool ok = true;
   };
   std::vector<region_tasks> by_region(cells.size());
+  // the boundary faces with one region on both sides (a facet inside a segment), by region, before
+  // and after: the cavity keeps both sides of such a face apart (both its dead cells' faces are
+  // on the cavity's boundary, facing away from each other), as meshing the segment whole does
+  std::vector<std::vector<packed_key<D>>> inner0(cells.size()), inner1(cells.size());
+  for (std::size_t f = 0; f < b0.faces.size() && f < l0.side.size(); ++f)
+    if (const int r = l0.side[f][0]; r >= 0 && r == l0.side[f][1] && static_cast<std::size_t>(r) < cells.size())
+      inner0[static_cast<std::size_t>(r)].push_back(pack<D>(key_of<D>(b0.faces[f])));
+  for (std::size_t f = 0; f < b1.faces.size() && f < l1.side.size(); ++f)
+    if (const int r = l1.side[f][0]; r >= 0 && r == l1.side[f][1] && static_cast<std::size_t>(r) < cells.size())
+      inner1[static_cast<std::size_t>(r)].push_back(pack<D>(key_of<D>(b1.faces[f])));
+  for (auto& v : inner0) std::sort(v.begin(), v.end());
+  for (auto& v : inner1) std::sort(v.begin(), v.end());
   std::vector<std::size_t> regions(cells.size());
   std::iota(regions.begin(), regions.end(), std::size_t{0});
   // the parity of the permutation that sorts a face: faces with one key and one parity face the
@@ -1178,6 +1190,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
           break;
         }
         if (met[j].first != k) continue;
+        if (!inner0[r].empty() && std::binary_search(inner0[r].begin(), inner0[r].end(), k)) break;  // both sides stay
         if (twice[j] || parity(met[j].second) == parity(met[i].second)) {
           W.ok = false;  // two dead cells on one side of a face
           return;
@@ -1189,7 +1202,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     std::vector<std::pair<packed_key<D>, face_t<D>>> once;
     for (std::uint32_t i = 0; i < met.size(); ++i)
       if (!twice[i]) once.push_back(met[i]);
-    std::sort(once.begin(), once.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::sort(once.begin(), once.end(), [](const auto& x, const auto& y) { return x.first < y.first || (x.first == y.first && x.second < y.second); });
     std::vector<std::pair<face_t<D>, face_t<D>>> open;  // sorted by key
     open.reserve(once.size());
     for (const auto& [k, g] : once) open.push_back({key_of<D>(g), g});
@@ -1198,8 +1211,10 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       for (int side = 0; side < 2; ++side)
         if (l0.side[f][static_cast<std::size_t>(side)] == static_cast<int>(r)) {
           const auto key = key_of<D>(b0.faces[f]);
-          const auto it = std::lower_bound(open.begin(), open.end(), key, [](const auto& x, const face_t<D>& k) { return x.first < k; });
-          if (it == open.end() || it->first != key || gone_here[static_cast<std::size_t>(it - open.begin())]) {
+          auto it = std::lower_bound(open.begin(), open.end(), key, [](const auto& x, const face_t<D>& k) { return x.first < k; });
+          // a face with the region on both sides is there twice, once facing each way
+          while (it != open.end() && it->first == key && gone_here[static_cast<std::size_t>(it - open.begin())]) ++it;
+          if (it == open.end() || it->first != key) {
             W.ok = false;
             return;
           }
@@ -1219,8 +1234,11 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     std::sort(keyed.begin() + static_cast<long>(kept), keyed.end());
     std::inplace_merge(keyed.begin(), keyed.begin() + static_cast<long>(kept), keyed.end());
     for (std::size_t i = 1; i < keyed.size(); ++i)
-      if (keyed[i].first == keyed[i - 1].first) {
-        W.ok = false;  // a new boundary face where the cavity's boundary has one already
+      if (keyed[i].first == keyed[i - 1].first &&
+          !(keyed[i].second != keyed[i - 1].second && (i < 2 || keyed[i - 2].first != keyed[i].first) &&
+            std::binary_search(inner1[r].begin(), inner1[r].end(), pack<D>(keyed[i].first)))) {
+        W.ok = false;  // a new boundary face where the cavity's boundary has one already (a face
+                       // with the region on both sides is there twice, once facing each way)
         return;
       }
     if (keyed.empty()) return;
