@@ -581,6 +581,21 @@ BOOST_AUTO_TEST_CASE(bench_structures_refined) {
     BOOST_TEST(q.max_ratio <= 1.414 * (1 + 1e-9));
     BOOST_TEST(q.below5 + q.above170 == 0u);
   }
+  {
+    // down to 1.2 where the input angles allow (right angles only): the MOSFET within the default
+    // 60 rounds (24; it took 144 rounds and 2.4 times the points while every encroaching element
+    // had every face it encroaches split, docs/benchmarks.md, twenty-second part)
+    const auto p = std::get<plc<3>>(io::read_plc(gsse::test::bench_structure(*shared, "mosfet", 3)));
+    pl::report r;
+    auto o = quality_options(1.2, 2, 0.0304);
+    o.graded = false;
+    const auto d = pl::mesh(p, {}, o, r);
+    BOOST_TEST(r.problems.empty());
+    BOOST_TEST(r.refinement.converged, "MOSFET at 1.2: " << r.refinement.rounds << " rounds, " << r.refinement.bad_left << " left");
+    const auto q = pl::measure(d);
+    BOOST_TEST(q.max_ratio <= 1.2 * (1 + 1e-9));
+    BOOST_TEST(q.below5 + q.above170 == 0u);
+  }
 }
 
 // A thin layer (0.02 under a size of 0.1) between two slanted walls: the walls' points are each
