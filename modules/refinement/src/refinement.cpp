@@ -1235,7 +1235,13 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
           break;
         }
         if (met[j].first != k) continue;
-        if (!inner0[r].empty() && std::binary_search(inner0[r].begin(), inner0[r].end(), k)) break;  // both sides stay
+        if (!inner0[r].empty() && std::binary_search(inner0[r].begin(), inner0[r].end(), k)) {
+          if (parity(met[j].second) == parity(met[i].second)) {
+            W.ok = false;  // two dead cells on one side of a face
+            return;
+          }
+          break;  // both sides stay on the cavity's boundary
+        }
         if (twice[j] || parity(met[j].second) == parity(met[i].second)) {
           W.ok = false;  // two dead cells on one side of a face
           return;
@@ -1280,7 +1286,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     std::inplace_merge(keyed.begin(), keyed.begin() + static_cast<long>(kept), keyed.end());
     for (std::size_t i = 1; i < keyed.size(); ++i)
       if (keyed[i].first == keyed[i - 1].first &&
-          !(keyed[i].second != keyed[i - 1].second && (i < 2 || keyed[i - 2].first != keyed[i].first) &&
+          !(parity(keyed[i].second) != parity(keyed[i - 1].second) && (i < 2 || keyed[i - 2].first != keyed[i].first) &&
             std::binary_search(inner1[r].begin(), inner1[r].end(), pack<D>(keyed[i].first)))) {
         W.ok = false;  // a new boundary face where the cavity's boundary has one already (a face
                        // with the region on both sides is there twice, once facing each way)
