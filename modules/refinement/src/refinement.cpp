@@ -725,20 +725,18 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   };
   std::vector<ref> all;
   std::set<int> levels;
-  // a boundary face's circumcentre and circumradius (3D; 2D: midpoint, half length), in doubles:
-  // where the conformer will split it, as far as the choice of splits below needs to know
-  auto face_centre = [&](std::size_t f) -> std::pair<point<D>, double> {
+  // a boundary face's circumcentre (2D: midpoint), in doubles: where the conformer will split
+  // it, as far as the choice of splits below needs to know
+  auto face_centre = [&](std::size_t f) -> point<D> {
     const auto& F = b.faces[f];
-    point<D> m{};
     if constexpr (D == 2) {
-      m = 0.5 * (bp[F[0]] + bp[F[1]]);
+      return 0.5 * (bp[F[0]] + bp[F[1]]);
     } else {
       const point<D> u = bp[F[1]] - bp[F[0]], v = bp[F[2]] - bp[F[0]];
       const point<D> n = cross(u, v);
       const double nn = dot(n, n);
-      m = nn > 0 ? bp[F[0]] + geometry::triangle_circumcentre_offset(u, v, n, nn) : bp[F[0]];
+      return nn > 0 ? bp[F[0]] + geometry::triangle_circumcentre_offset(u, v, n, nn) : bp[F[0]];
     }
-    return {m, distance(m, bp[F[0]])};
   };
   for (std::uint32_t k = 0; k < found.size(); ++k)
     for (std::uint32_t i = 0; i < found[k].size(); ++i) {
@@ -785,24 +783,26 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   std::vector<char> may_leave;  // per accepted point
   for (const auto& x : all) {
     const auto& c = at(x);
-    const bool near = taken.any_within(c.c, apart * c.r) || (filter_splits && marks.any_within(c.c, apart * c.r));
+    auto near = [&] { return taken.any_within(c.c, apart * c.r) || (filter_splits && marks.any_within(c.c, apart * c.r)); };
     if (c.count > 0) {
-      if (filter_splits && near) continue;
+      if (filter_splits && near()) continue;
       std::size_t best = 0;
+      point<D> best_at{};
       double closest = std::numeric_limits<double>::infinity();
       for (std::uint32_t j = 0; j < c.count; ++j) {
         const std::size_t f = faces[x.chunk][c.first + j];
+        const point<D> m = filter_splits ? face_centre(f) : point<D>{};
         if (!one_face) {
           split.push_back(f);
-          if (filter_splits) marks.add(face_centre(f).first);
-        } else if (const double d = squared_distance(face_centre(f).first, c.c); d < closest) {
-          closest = d, best = f;
+          if (filter_splits) marks.add(m);
+        } else if (const double d = squared_distance(m, c.c); d < closest) {
+          closest = d, best = f, best_at = m;
         }
       }
-      if (one_face) split.push_back(best), marks.add(face_centre(best).first);
+      if (one_face) split.push_back(best), marks.add(best_at);
       continue;
     }
-    if (near) continue;
+    if (near()) continue;
     taken.add(c.c);
     may_leave.push_back(c.may_leave);
   }
