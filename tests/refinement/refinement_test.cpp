@@ -596,6 +596,24 @@ BOOST_AUTO_TEST_CASE(bench_structures_refined) {
     BOOST_TEST(q.max_ratio <= 1.2 * (1 + 1e-9));
     BOOST_TEST(q.below5 + q.above170 == 0u);
   }
+  // the trench (a liner of 0.01 under a size of 0.044) at 1.2: axis-aligned within 100 rounds
+  // (66), rotated within the default 60 (38). While the nearest encroached face was split below
+  // 1.3 too, the walls were split again and again: not converged after 250 rounds axis-aligned,
+  // 166 rounds rotated (docs/benchmarks.md, twenty-third part)
+  for (bool rotate : {false, true}) {
+    const auto p = std::get<plc<3>>(io::read_plc(gsse::test::bench_structure(*shared, "trench", 3, 0, rotate)));
+    pl::report r;
+    auto o = quality_options(1.2, 2, 0.0442);
+    o.graded = false;
+    o.quality_rounds = rotate ? 0 : 100;
+    const auto d = pl::mesh(p, {}, o, r);
+    BOOST_TEST(r.problems.empty());
+    BOOST_TEST(r.refinement.converged, (rotate ? "rotated " : "") << "trench at 1.2: " << r.refinement.rounds << " rounds, "
+                                                                 << r.refinement.bad_left << " left");
+    const auto q = pl::measure(d);
+    BOOST_TEST(q.max_ratio <= 1.2 * (1 + 1e-9));
+    BOOST_TEST(q.below5 + q.above170 == 0u);
+  }
 }
 
 // A thin layer (0.02 under a size of 0.1) between two slanted walls: the walls' points are each

@@ -19,14 +19,16 @@ inline std::optional<std::filesystem::path> shared_dir() {
 }
 
 /// Writes structure `name` (2D or 3D, optional cloud) with ../shared/bench/structures.py into a
-/// temporary folder; returns the .poly path.
+/// temporary folder; returns the .poly path. `rotate`: turned by the script's generic rotation.
 inline std::string bench_structure(const std::filesystem::path& shared, const std::string& name, int dim,
-                                   int cloud = 0) {
-  const auto dir = std::filesystem::temp_directory_path() / ("gsse_bench_" + name + std::to_string(dim) + "_" + std::to_string(cloud));
+                                   int cloud = 0, bool rotate = false) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("gsse_bench_" + name + std::to_string(dim) + "_" + std::to_string(cloud) + (rotate ? "_rot" : ""));
   std::filesystem::create_directories(dir);
   const std::string cmd = "python3 " + (shared / "bench" / "structures.py").string() + " " + name + " --dim " +
                           std::to_string(dim) + " --out " + dir.string() +
-                          (cloud ? " --cloud " + std::to_string(cloud) : std::string()) + " > /dev/null";
+                          (cloud ? " --cloud " + std::to_string(cloud) : std::string()) + (rotate ? " --rotate" : "") +
+                          " > /dev/null";
   if (std::system(cmd.c_str()) != 0) throw std::runtime_error("structures.py failed: " + cmd);
   return (dir / (name + ".poly")).string();
 }
