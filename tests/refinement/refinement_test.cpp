@@ -583,7 +583,7 @@ BOOST_AUTO_TEST_CASE(bench_structures_refined) {
   }
   {
     // down to 1.2 where the input angles allow (right angles only): the MOSFET within the default
-    // 60 rounds (24; it took 144 rounds and 2.4 times the points while every encroaching element
+    // 60 rounds (22; it took 144 rounds and 2.4 times the points while every encroaching element
     // had every face it encroaches split, docs/benchmarks.md, twenty-second part)
     const auto p = std::get<plc<3>>(io::read_plc(gsse::test::bench_structure(*shared, "mosfet", 3)));
     pl::report r;
