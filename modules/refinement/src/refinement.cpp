@@ -773,8 +773,8 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   // ball and kills it, as for the circumcentres themselves. (Every such element used to ask, and
   // in a round with thousands of them next to one wall each asked for every face its ball
   // reaches: the rotated trench split 26,850 faces for 7,078 circumcentres.) And where the PLC has
-  // no small angles, for one face only, the one whose circumcentre is nearest its own: as a
-  // sequential refinement splits one encroached face and looks at the element again, the others
+  // no small angles, for one face only (at 1.3 and above the one whose circumcentre is nearest its
+  // own; below, see next): as a sequential refinement splits one encroached face and looks at the element again, the others
   // wait for the next round if the element is still there (rotated trench 41,185 -> 36,221
   // points; at --quality 1.2 the MOSFET 51,628 -> 21,129, as many as TetGen's -q1.2). About small
   // angles all of them: there one face a round made the cascades that need many take more rounds
@@ -803,18 +803,17 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       if (filter_splits && near()) continue;
       std::size_t best = 0;
       point<D> best_at{};
-      double closest = std::numeric_limits<double>::infinity();
+      double closest = std::numeric_limits<double>::infinity();  // the best face's score
       for (std::uint32_t j = 0; j < c.count; ++j) {
         const std::size_t f = faces[x.chunk][c.first + j];
         const point<D> m = filter_splits ? face_centre(f) : point<D>{};
         if (!one_face) {
           split.push_back(f);
           if (filter_splits) marks.add(m);
-        } else if (largest_face) {
-          const double rho2 = squared_distance(m, bp[b.faces[f][0]]);
-          if (-rho2 < closest || (-rho2 == closest && f < best)) closest = -rho2, best = f, best_at = m;
-        } else if (const double d = squared_distance(m, c.c); d < closest) {
-          closest = d, best = f, best_at = m;
+        } else {
+          // the least score: the distance to the element's circumcentre, or minus the radius
+          const double score = largest_face ? -squared_distance(m, bp[b.faces[f][0]]) : squared_distance(m, c.c);
+          if (score < closest || (largest_face && score == closest && f < best)) closest = score, best = f, best_at = m;
         }
       }
       if (one_face) split.push_back(best), marks.add(best_at);
