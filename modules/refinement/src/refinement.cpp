@@ -774,8 +774,8 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   // in a round with thousands of them next to one wall each asked for every face its ball
   // reaches: the rotated trench split 26,850 faces for 7,078 circumcentres.) And where the PLC has
   // no small angles, for one face only (at 1.3 and above the one whose circumcentre is nearest its
-  // own; below, see next): as a sequential refinement splits one encroached face and looks at the element again, the others
-  // wait for the next round if the element is still there (rotated trench 41,185 -> 36,221
+  // own; below, see next): as a sequential refinement splits one encroached face and looks at the
+  // element again, the others wait for the next round if the element is still there (rotated trench 41,185 -> 36,221
   // points; at --quality 1.2 the MOSFET 51,628 -> 21,129, as many as TetGen's -q1.2). About small
   // angles all of them: there one face a round made the cascades that need many take more rounds
   // (corpus at 1.414: occ_pump_nut 50 -> 59 of its 60, scad_example009 40 -> 57; all of them and
