@@ -1331,15 +1331,53 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     // pieces in the order of the cell of a 1024^D lattice over the points (Morton order) that
     // holds their box's centre, then of their first face: a task's pieces lie together
     std::vector<std::pair<point<D>, point<D>>> box(pieces.size());
-    std::vector<std::pair<std::uint64_t, std::size_t>> order(pieces.size());
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       auto& [lo, hi] = box[i];
       lo = hi = p[pieces[i][0][0]];
       for (const auto& F : pieces[i])
         for (auto v : F)
           for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], p[v][k]), hi[k] = std::max(hi[k], p[v][k]);
-      order[i] = {morton_code<D>(0.5 * (lo + hi), all_lo, all_hi, 10), i};
     }
+    // an island (cells that survive, every neighbour dead) is a piece of its own whose faces face
+    // out of it: its cavity is the space between it and the piece around it, so it joins, in one
+    // task, every piece whose box holds its box (the one around it among them). The sign of the
+    // enclosed volume (doubles) only batches pieces: a piece misjudged fails its task's checks
+    // below, and the round falls back to meshing whole, as before
+    if (pieces.size() > 1) {
+      std::vector<std::size_t> islands, around;
+      for (std::size_t i = 0; i < pieces.size(); ++i) {
+        const point<D> o = p[pieces[i][0][0]];
+        double v = 0;
+        for (const auto& F : pieces[i]) v += cone<D>(p, F, o);
+        (v > 0 ? islands : around).push_back(i);
+      }
+      if (!islands.empty()) {
+        union_find<std::uint32_t> groups(pieces.size());
+        auto holds = [&](std::size_t outer, std::size_t inner) {
+          for (std::size_t k = 0; k < D; ++k)
+            if (box[outer].first[k] > box[inner].first[k] || box[outer].second[k] < box[inner].second[k]) return false;
+          return true;
+        };
+        for (std::size_t i : islands)
+          for (std::size_t o : around)
+            if (holds(o, i)) groups.unite(static_cast<std::uint32_t>(o), static_cast<std::uint32_t>(i));
+        std::vector<std::vector<face_t<D>>> merged;
+        std::vector<std::pair<point<D>, point<D>>> merged_box;
+        std::unordered_map<std::uint32_t, std::size_t> slot;
+        for (std::size_t i = 0; i < pieces.size(); ++i) {
+          auto [it, fresh] = slot.try_emplace(groups.find(static_cast<std::uint32_t>(i)), merged.size());
+          if (fresh) merged.emplace_back(), merged_box.push_back(box[i]);
+          auto& m = merged[it->second];
+          m.insert(m.end(), pieces[i].begin(), pieces[i].end());
+          auto& [lo, hi] = merged_box[it->second];
+          for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], box[i].first[k]), hi[k] = std::max(hi[k], box[i].second[k]);
+        }
+        pieces = std::move(merged);
+        box = std::move(merged_box);
+      }
+    }
+    std::vector<std::pair<std::uint64_t, std::size_t>> order(pieces.size());
+    for (std::size_t i = 0; i < pieces.size(); ++i) order[i] = {morton_code<D>(0.5 * (box[i].first + box[i].second), all_lo, all_hi, 10), i};
     std::sort(order.begin(), order.end());
     for (auto [m, i] : order) {
       if (W.tasks.empty() || W.tasks.back().front.size() >= 4096) W.tasks.push_back({r, {}, {}});
