@@ -177,6 +177,21 @@ struct run_box {
 template <std::size_t D>
 using runs_by_region = std::vector<std::vector<run_box<D>>>;
 
+/// A cavity boundary (`front`: faces facing into the dead cells) split into the pieces the front
+/// mesher may fill apart: faces connected through shared vertices, in order of their first face;
+/// then an island's piece (cells that survive with every neighbour dead, which a round of many
+/// points can leave: its faces face out of it, the volume it encloses has the sign opposite to
+/// that of the piece enclosing the most) joined with
+/// every piece whose bounding box holds its own, the piece around it among them. Each with its
+/// faces' bounding box. (Used by remesh_cavities; exposed for its tests.)
+template <std::size_t D>
+struct cavity_piece {
+  std::vector<std::array<vertex_id, D>> faces;
+  point<D> lo{}, hi{};
+};
+template <std::size_t D>
+std::vector<cavity_piece<D>> cavity_pieces(const std::vector<point<D>>& p, const std::vector<std::array<vertex_id, D>>& front);
+
 template <std::size_t D>
 bool remesh_cavities(const conformer::boundary<D>& before, const conformer::boundary<D>& after,
                      const conformer::labelling& labels_before, const conformer::labelling& labels_after,
