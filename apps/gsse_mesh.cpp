@@ -253,6 +253,10 @@ int run(const gsse::plc<D>& p, const args& a) {
         if (st.excepted_near.size() > 4) std::printf(" and %zu more points (--stats lists all)", st.excepted_near.size() - 4);
         std::printf("\n");
       }
+      if (st.full_remeshes)
+        std::printf("           %zu rounds meshed every segment whole: their cavities did not re-fill (the mesh is right, the "
+                    "rounds slower; please report the input)\n",
+                    st.full_remeshes);
       if (!st.failure.empty()) std::printf("           stopped by a failed %s (the mesh is the round before)\n", st.failure.c_str());
     }
     for (const auto& t : r.times) std::printf("  %-8s %8.3f s\n", t.stage.c_str(), t.seconds);
