@@ -34,7 +34,8 @@ struct options {
   // min_ratio3; 2D: the smallest angle in degrees, 20.7 by default, at most max_angle2
   double bound = 0;
   // rounds before giving up (the elements left are reported); 0: 250 in 2D (cheap rounds; above
-  // 30 degrees the last fixes come a few per round), 60 in 3D
+  // 30 degrees the last fixes come a few per round), 100 in 3D (60 until 2026-11-28: the tail
+  // rounds cost milliseconds, and scad_linear_extrude at 1.414 converges in 87)
   std::size_t max_rounds = 0;
   std::size_t max_points = 20'000'000;  // points in the mesh before giving up
   // 3D slivers: a tetrahedron with a dihedral angle below sliver_angle or above 180 - 2 x
