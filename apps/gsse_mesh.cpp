@@ -254,9 +254,9 @@ int run(const gsse::plc<D>& p, const args& a) {
         std::printf("\n");
       }
       if (st.full_remeshes)
-        std::printf("           %zu rounds meshed every segment whole: their cavities did not re-fill (the mesh is right, the "
-                    "rounds slower; please report the input)\n",
-                    st.full_remeshes);
+        std::printf("           %zu round%s meshed every segment whole: the cavities did not re-fill (the mesh is right, "
+                    "the run slower; please report the input)\n",
+                    st.full_remeshes, st.full_remeshes == 1 ? "" : "s");
       if (!st.failure.empty()) std::printf("           stopped by a failed %s (the mesh is the round before)\n", st.failure.c_str());
     }
     for (const auto& t : r.times) std::printf("  %-8s %8.3f s\n", t.stage.c_str(), t.seconds);

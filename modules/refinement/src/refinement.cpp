@@ -12,7 +12,6 @@
 #include <stdexcept>
 #include <tuple>
 #include <type_traits>
-#include <unordered_map>
 
 #include "gsse/container/key_set.hpp"
 #include "gsse/container/union_find.hpp"
@@ -971,6 +970,13 @@ std::vector<cavity_piece<D>> cavity_pieces(const std::vector<point<D>>& p, const
   thread_local std::vector<std::uint32_t> local;
   if (local.size() < p.size()) local.resize(p.size(), none);
   std::vector<vertex_id> numbered;
+  struct reset {  // on every way out, an exception too: the next call finds the table clean
+    std::vector<std::uint32_t>& table;
+    const std::vector<vertex_id>& used;
+    ~reset() {
+      for (vertex_id v : used) table[v] = ~std::uint32_t{0};
+    }
+  } clean{local, numbered};
   for (const auto& F : front)
     for (auto v : F)
       if (local[v] == none) local[v] = static_cast<std::uint32_t>(numbered.size()), numbered.push_back(v);
@@ -984,7 +990,6 @@ std::vector<cavity_piece<D>> cavity_pieces(const std::vector<point<D>>& p, const
     if (at == none) at = static_cast<std::uint32_t>(pieces.size()), pieces.emplace_back();
     pieces[at].faces.push_back(F);
   }
-  for (vertex_id v : numbered) local[v] = none;
   for (auto& piece : pieces) {
     piece.lo = piece.hi = p[piece.faces[0][0]];
     for (const auto& F : piece.faces)
