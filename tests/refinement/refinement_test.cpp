@@ -641,10 +641,12 @@ BOOST_AUTO_TEST_CASE(cavity_pieces_keep_an_island_with_the_cavity_around_it) {
 
 // End to end: points on a sphere just outside one cell's circumsphere kill the cells around it
 // and leave it standing, an island; re-meshing the cavities gives the cells a full meshing gives.
-// (Here the island and the cavity around it fit one batch of faces either way; the corpus inputs
-// that failed had them in two, which cavity_pieces now prevents, checked above.)
+// With the default batch the island and the cavity around it fit one task either way; with a
+// batch of 1 face every piece is a task of its own, as the corpus inputs that failed had them
+// (before cavity_pieces joined an island with the piece around it, that run failed).
 BOOST_AUTO_TEST_CASE(cavities_around_an_island_match_a_full_meshing) {
-  for (bool rotated : {false, true}) {
+  for (bool rotated : {false, true})
+  for (std::size_t batch : {refinement::default_batch_faces, std::size_t{1}}) {
     const auto p = stack(1, {0, 1}, rotated);
     conformer::options co;
     co.size = 0.15;
@@ -688,9 +690,10 @@ BOOST_AUTO_TEST_CASE(cavities_around_an_island_match_a_full_meshing) {
     const auto c = conformer::resume(p, b, added, {}, co);
     const auto lc = conformer::label(c, p, 1);
     auto before = cells;
-    BOOST_REQUIRE(refinement::remesh_cavities(b, c, l, lc, cells, 2));
+    BOOST_REQUIRE_MESSAGE(refinement::remesh_cavities<3>(b, c, l, lc, cells, 2, nullptr, nullptr, nullptr, nullptr, nullptr, batch),
+                          (rotated ? "rotated, " : "") << "batch " << batch << ": the cavities failed");
     const auto full = pl::mesh_segments<3>::wrap(c, lc, 1);
-    BOOST_TEST((canonical<3>(cells) == canonical<3>(full)), (rotated ? "rotated: " : "") << "the cavities' cells differ from a full meshing");
+    BOOST_TEST((canonical<3>(cells) == canonical<3>(full)), (rotated ? "rotated, " : "") << "batch " << batch << ": the cavities' cells differ from a full meshing");
     // it was an island: the cell stands, every cell that shared a face with it went
     auto sorted = [](std::array<vertex_id, 4> x) {
       std::sort(x.begin(), x.end());
@@ -737,13 +740,14 @@ BOOST_AUTO_TEST_CASE(bench_structures_refined) {
     BOOST_TEST(q.below5 + q.above170 == 0u);
   }
   {
-    // down to 1.2 where the input angles allow (right angles only): the MOSFET within the default
-    // 60 rounds (22; it took 144 rounds and 2.4 times the points while every encroaching element
-    // had every face it encroaches split, docs/benchmarks.md, twenty-second part)
+    // down to 1.2 where the input angles allow (right angles only): the MOSFET within 60 rounds
+    // (22; it took 144 rounds and 2.4 times the points while every encroaching element had every
+    // face it encroaches split, docs/benchmarks.md, twenty-second part)
     const auto p = std::get<plc<3>>(io::read_plc(gsse::test::bench_structure(*shared, "mosfet", 3)));
     pl::report r;
     auto o = quality_options(1.2, 2, 0.0304);
     o.graded = false;
+    o.quality_rounds = 60;
     const auto d = pl::mesh(p, {}, o, r);
     BOOST_TEST(r.problems.empty());
     BOOST_TEST(r.refinement.converged, "MOSFET at 1.2: " << r.refinement.rounds << " rounds, " << r.refinement.bad_left << " left");

@@ -1009,7 +1009,7 @@ std::vector<cavity_piece<D>> cavity_pieces(const std::vector<point<D>>& p, const
     if (std::abs(volume[i]) > std::abs(volume[largest])) largest = i;
   }
   std::vector<std::size_t> islands, around;
-  for (std::size_t i = 0; i < pieces.size(); ++i) ((volume[i] > 0) != (volume[largest] > 0) ? islands : around).push_back(i);
+  for (std::size_t i = 0; i < pieces.size(); ++i) (volume[i] * volume[largest] < 0 ? islands : around).push_back(i);
   if (islands.empty()) return pieces;
   union_find<std::uint32_t> groups(pieces.size());
   auto holds = [&](std::size_t outer, std::size_t inner) {
@@ -1040,7 +1040,7 @@ template <std::size_t D>
 bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary<D>& b1, const conformer::labelling& l0,
                      const conformer::labelling& l1, cells_by_region<D>& cells, unsigned threads, std::size_t* removed_count,
                      std::size_t* made_count, std::vector<std::vector<char>>* flags, balls_by_region<D>* balls,
-                     runs_by_region<D>* kept_runs) {
+                     runs_by_region<D>* kept_runs, std::size_t batch_faces) {
   const auto& p = b1.points;
   const std::size_t n0 = b0.points.size();
   if (p.size() < n0 || l0.regions.size() != l1.regions.size() || cells.size() != l1.regions.size()) return false;
@@ -1388,7 +1388,8 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     front.reserve(keyed.size());
     for (const auto& [k, F] : keyed) front.push_back(F);
     // connected pieces, an island with the piece around it (cavity_pieces), batched into tasks of
-    // about 4096 faces: a task is a union of closed fronts, so the front mesher fills each. The
+    // about batch_faces faces (4096): a task is a union of closed fronts, so the front mesher
+    // fills each. The
     // pieces in the order of the cell of a 1024^D lattice over the points (Morton order) that
     // holds their box's centre, then of their first face: a task's pieces lie together
     const auto pieces = cavity_pieces<D>(p, front);
@@ -1396,7 +1397,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     for (std::size_t i = 0; i < pieces.size(); ++i) order[i] = {morton_code<D>(0.5 * (pieces[i].lo + pieces[i].hi), all_lo, all_hi, 10), i};
     std::sort(order.begin(), order.end());
     for (auto [m, i] : order) {
-      if (W.tasks.empty() || W.tasks.back().front.size() >= 4096) W.tasks.push_back({r, {}, {}});
+      if (W.tasks.empty() || W.tasks.back().front.size() >= batch_faces) W.tasks.push_back({r, {}, {}});
       W.tasks.back().front.insert(W.tasks.back().front.end(), pieces[i].faces.begin(), pieces[i].faces.end());
       W.tasks.back().boxes.push_back({pieces[i].lo, pieces[i].hi});
     }
@@ -1718,10 +1719,10 @@ template std::vector<cavity_piece<2>> cavity_pieces<2>(const std::vector<point<2
 template std::vector<cavity_piece<3>> cavity_pieces<3>(const std::vector<point<3>>&, const std::vector<std::array<vertex_id, 3>>&);
 template bool remesh_cavities<2>(const conformer::boundary<2>&, const conformer::boundary<2>&, const conformer::labelling&,
                                  const conformer::labelling&, cells_by_region<2>&, unsigned, std::size_t*, std::size_t*,
-                                 std::vector<std::vector<char>>*, balls_by_region<2>*, runs_by_region<2>*);
+                                 std::vector<std::vector<char>>*, balls_by_region<2>*, runs_by_region<2>*, std::size_t);
 template bool remesh_cavities<3>(const conformer::boundary<3>&, const conformer::boundary<3>&, const conformer::labelling&,
                                  const conformer::labelling&, cells_by_region<3>&, unsigned, std::size_t*, std::size_t*,
-                                 std::vector<std::vector<char>>*, balls_by_region<3>*, runs_by_region<3>*);
+                                 std::vector<std::vector<char>>*, balls_by_region<3>*, runs_by_region<3>*, std::size_t);
 template domain<2> refine<2>(const plc<2>&, conformer::boundary<2>&, conformer::labelling&, cells_by_region<2>, const conformer::options&,
                              const options&, const meshers<2>&, stats&);
 template domain<3> refine<3>(const plc<3>&, conformer::boundary<3>&, conformer::labelling&, cells_by_region<3>, const conformer::options&,

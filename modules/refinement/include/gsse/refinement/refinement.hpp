@@ -193,12 +193,17 @@ struct cavity_piece {
 template <std::size_t D>
 std::vector<cavity_piece<D>> cavity_pieces(const std::vector<point<D>>& p, const std::vector<std::array<vertex_id, D>>& front);
 
+/// Re-meshes the cavities the points `after` adds to `before` (the cells whose circumball holds
+/// one) in `cells`; false (and `cells` unchanged) where a cavity does not close or fill its
+/// volume. The cavity boundary's pieces (cavity_pieces) go to the front mesher in tasks of about
+/// `batch_faces` faces (a test lowers it to put every piece in a task of its own).
+inline constexpr std::size_t default_batch_faces = 4096;
 template <std::size_t D>
 bool remesh_cavities(const conformer::boundary<D>& before, const conformer::boundary<D>& after,
                      const conformer::labelling& labels_before, const conformer::labelling& labels_after,
                      cells_by_region<D>& cells, unsigned threads, std::size_t* removed = nullptr, std::size_t* made = nullptr,
                      std::vector<std::vector<char>>* flags = nullptr, balls_by_region<D>* balls = nullptr,
-                     runs_by_region<D>* runs = nullptr);
+                     runs_by_region<D>* runs = nullptr, std::size_t batch_faces = default_batch_faces);
 
 /// Refines `cells`, the mesh of boundary `b` (labelled `l`) of PLC `p`, until no element exceeds
 /// the bound except the excepted ones, or the round or point cap is reached (stats says which).
