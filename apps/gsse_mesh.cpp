@@ -8,13 +8,17 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <variant>
+#include <vector>
 
 #include "gsse/io/node_ele.hpp"
 #include "gsse/io/gmsh.hpp"
 #include "gsse/io/poly.hpp"
+#include "gsse/io/sidecar.hpp"
 #include "gsse/io/vtu.hpp"
 #include "gsse/pipeline/pipeline.hpp"
 #include "gsse/plc/region_points.hpp"
@@ -90,6 +94,69 @@ struct args {
   bool verify = false, verify_tol_given = false, quiet = false, no_merge = false, msh22 = false;
   std::size_t max_steiner = gsse::conformer::options{}.max_steiner;
 };
+
+/// Refuses, before any work, a run that would write over one of its own inputs or write one file
+/// twice. The traps: `-o m.node` beside m.poly writes the segment names to m.json, which is
+/// m.poly's sidecar (its sizing keys and anything else in it would be lost); `--stats m.json`
+/// beside m.poly is read back as the sidecar by the next run; `--stats g.json` with `-o g.node`
+/// overwrites the mesh's own sidecar. Paths are compared after making them absolute and
+/// canonical (symbolic links resolved where the file exists).
+void refuse_overwrites(const args& a) {
+  namespace fs = std::filesystem;
+  auto same = [](const std::string& x, const std::string& y) {
+    std::error_code e1, e2;
+    const fs::path px = fs::weakly_canonical(fs::absolute(x), e1), py = fs::weakly_canonical(fs::absolute(y), e2);
+    return !e1 && !e2 ? px == py : fs::absolute(x).lexically_normal() == fs::absolute(y).lexically_normal();
+  };
+  std::vector<std::pair<std::string, std::string>> reads, writes;  // (path, what it is)
+  const std::string sidecar = gsse::io::base_of(a.input) + ".json";
+  reads.push_back({a.input, "the input"});
+  reads.push_back({sidecar, "the input's sidecar (segment names and sizing are read from it, docs/io.md)"});
+  if (!a.cloud.empty()) reads.push_back({a.cloud, "the --cloud file"});
+  if (!a.rules.empty()) reads.push_back({a.rules, "the --rules file"});
+  std::error_code ec;
+  if (fs::is_regular_file(sidecar, ec)) {  // the background mesh it names (malformed: the error is the reader's, as later)
+    const auto bg = gsse::io::read_sidecar(sidecar).sizing.background;
+    if (!bg.empty()) {
+      const fs::path rel(bg);
+      const std::string at = rel.is_absolute() ? rel.string() : (fs::path(sidecar).parent_path() / rel).string();
+      if (at.size() > 4 && at.compare(at.size() - 4, 4, ".vtu") == 0)
+        reads.push_back({at, "the background mesh"});
+      else
+        for (const char* e : {".node", ".ele", ".mtr"}) reads.push_back({gsse::io::base_of(at) + e, "the background mesh"});
+    }
+  }
+  if (a.check.empty()) {
+    const std::string& out = a.output;
+    auto ends = [&](const char* e) { return out.size() >= std::strlen(e) && out.compare(out.size() - std::strlen(e), std::string::npos, e) == 0; };
+    if (ends(".vtu")) {
+      writes.push_back({out, "-o " + out});
+      writes.push_back({gsse::io::boundary_vtu_path(out), "-o " + out + "'s boundary companion"});
+    } else if (ends(".msh")) {
+      writes.push_back({out, "-o " + out});
+    } else if (ends(".node")) {
+      const std::string base = out.substr(0, out.size() - 5);
+      for (const char* e : {".node", ".ele", ".face", ".edge"}) writes.push_back({base + e, "-o " + out});
+      writes.push_back({base + ".json", "-o " + out + "'s sidecar of segment names"});
+    }
+    if (!a.stats.empty()) writes.push_back({a.stats, "--stats " + a.stats});
+    if (!a.plc_out.empty()) {
+      writes.push_back({a.plc_out, "--plc-out " + a.plc_out});
+      writes.push_back({gsse::io::base_of(a.plc_out) + ".json", "--plc-out " + a.plc_out + "'s sidecar of segment names"});
+    }
+  }
+  for (std::size_t w = 0; w < writes.size(); ++w) {
+    for (const auto& [path, what] : reads)
+      if (same(writes[w].first, path)) {
+        const auto& [file, who] = writes[w];
+        const bool named = who.size() >= file.size() && who.compare(who.size() - file.size(), file.size(), file) == 0;
+        throw std::runtime_error(who + (named ? "" : " (" + file + ")") + " would overwrite " + what + ": choose another name");
+      }
+    for (std::size_t v = 0; v < w; ++v)
+      if (writes[v].second != writes[w].second && same(writes[w].first, writes[v].first))
+        throw std::runtime_error(writes[w].second + " and " + writes[v].second + " would both write " + writes[w].first + ": choose another name");
+  }
+}
 
 /// The verifier's verdict, as --verify and --check print it: problems on stderr; exit status 3 if any.
 int verdict(const std::vector<std::string>& problems, bool print, const char* what) {
@@ -425,6 +492,7 @@ int main(int argc, char** argv) {
     }
   }
   try {
+    refuse_overwrites(a);
     std::vector<gsse::io::plc_volume> volumes;
     auto input = gsse::io::read_plc(a.input, &volumes);
     if (!volumes.empty()) {

@@ -33,13 +33,13 @@ PY
   best_g=1000000000 best_c=1000000000 conform=0 steiner=0 tets=0 parts=""
   for ((r = 0; r < repeat; ++r)); do
     t0=$(now)
-    "$build/apps/gsse-mesh" "$work/cube.poly" --cloud "$work/cloud.node" --threads 1 --quiet -o "$work/g.node" --stats "$work/g.json"
+    "$build/apps/gsse-mesh" "$work/cube.poly" --cloud "$work/cloud.node" --threads 1 --quiet -o "$work/g.node" --stats "$work/g.stats.json"
     t=$(echo "$(now) - $t0" | bc)
     if (( $(echo "$t < $best_g" | bc) )); then
       best_g=$t
-      conform=$($py -c "import json;print(round(json.load(open('$work/g.json'))['times']['conform'],3))")
-      steiner=$($py -c "import json;print(json.load(open('$work/g.json'))['steiner'])")
-      tets=$($py -c "import json;print(sum(s['cells'] for s in json.load(open('$work/g.json'))['segments']))")
+      conform=$($py -c "import json;print(round(json.load(open('$work/g.stats.json'))['times']['conform'],3))")
+      steiner=$($py -c "import json;print(json.load(open('$work/g.stats.json'))['steiner'])")
+      tets=$($py -c "import json;print(sum(s['cells'] for s in json.load(open('$work/g.stats.json'))['segments']))")
     fi
     t0=$(now)
     out=$("$build/bench/cgal_delaunay" "$work/all.node" "$work/c")

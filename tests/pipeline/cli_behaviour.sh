@@ -18,6 +18,11 @@
 #               excepted at the apex under excepted_near (the apex's coordinates, as many as
 #               `excepted`), the summary names the point; --quality-rounds 3 stops after 3 rounds
 #               (not converged); --acute-guard 0 excepts nothing.
+#  overwrites   a run that would write over its own input, the input's sidecar (-o BASE.node
+#               beside BASE.poly writes BASE.json; --stats BASE.json) or the --cloud file, or
+#               write one file twice (--stats g.json with -o g.node), exits 1 before meshing with
+#               a message naming both, and the sidecar is byte-identical afterwards; a --stats
+#               file put where a sidecar is read is named as such.
 # usage: cli_behaviour.sh GSSE_MESH SOURCE_DIR
 set -uo pipefail
 mesh=$1; src=$2
@@ -114,12 +119,12 @@ with open(sys.argv[1], "w") as f:
     f.write("8 3 0 0\n" + "".join(f"{i+1} {p[0]!r} {p[1]!r} {p[2]!r}\n" for i, p in enumerate(P)))
     f.write("12 0\n" + "".join("1\n3 %d %d %d\n" % t for t in F) + "0\n1\n1 %r %r %r 1 -1\n" % rot((0.5, 0.5, 0.5)))
 PY
-out=$("$mesh" "$work/rot.poly" --size 0.2 --verify-tol 0 -o "$work/rot.vtu" --stats "$work/rot.json" 2>"$work/rot.err"); rc=$?
-if [ $rc = 3 ] && [[ "$out" == *"verify: FAIL"* ]] && grep -q "^gsse-mesh: verify: " "$work/rot.err" && [ ! -e "$work/rot.vtu" ] && [ ! -e "$work/rot.json" ]; then
+out=$("$mesh" "$work/rot.poly" --size 0.2 --verify-tol 0 -o "$work/rot.vtu" --stats "$work/rot.stats.json" 2>"$work/rot.err"); rc=$?
+if [ $rc = 3 ] && [[ "$out" == *"verify: FAIL"* ]] && grep -q "^gsse-mesh: verify: " "$work/rot.err" && [ ! -e "$work/rot.vtu" ] && [ ! -e "$work/rot.stats.json" ]; then
   ok "--verify-tol 0 on a rotated cube: FAIL, exit 3, '$(head -c 80 "$work/rot.err")...', nothing written"
 else bad "--verify-tol 0 on a rotated cube: exit $rc, files: $(ls "$work"/rot.* | tr '\n' ' ')"; fi
-out=$("$mesh" "$work/rot.poly" --size 0.2 --verify -o "$work/rot.vtu" --stats "$work/rot.json" 2>&1); rc=$?
-if [ $rc = 0 ] && [[ "$out" == *"verify: PASS"* ]] && [ -e "$work/rot.vtu" ] && [ -e "$work/rot.json" ]; then ok "--verify on the rotated cube: PASS, both files written"
+out=$("$mesh" "$work/rot.poly" --size 0.2 --verify -o "$work/rot.vtu" --stats "$work/rot.stats.json" 2>&1); rc=$?
+if [ $rc = 0 ] && [[ "$out" == *"verify: PASS"* ]] && [ -e "$work/rot.vtu" ] && [ -e "$work/rot.stats.json" ]; then ok "--verify on the rotated cube: PASS, both files written"
 else bad "--verify on the rotated cube: exit $rc"; fi
 
 # --quality on a needle: where the elements are excepted, the round cap, the exception off
@@ -206,4 +211,31 @@ if [ $rc = 3 ] && [[ "$err" == *"region point"* ]]; then ok "--check, inner box 
 else bad "--check, inner box relabelled: exit $rc, '$err'"; fi
 msg=$("$mesh" "$work/box.poly" --check "$work/m.node" -o "$work/x.vtu" 2>&1); rc=$?
 if [ $rc = 2 ] && [ ! -e "$work/x.vtu" ]; then ok "--check with -o: exit 2"; else bad "--check with -o: exit $rc"; fi
+
+# overwrites: refused before any work, the files as they were
+mkdir "$work/ow"
+cp "$work/box.poly" "$work/ow/b.poly"
+printf '{"segments": ["outer", "inner"], "sizes": {"inner": 0.1}}\n' > "$work/ow/b.json"
+cp "$work/ow/b.json" "$work/ow/b.json.orig"
+check_refused() {  # label, expected words in the message, gsse-mesh arguments...
+  local label=$1 words=$2; shift 2
+  local err rc
+  err=$(cd "$work/ow" && "$mesh" "$@" --quiet 2>&1 >/dev/null); rc=$?
+  if [ $rc = 1 ] && [[ "$err" == *"$words"* ]] && cmp -s "$work/ow/b.json" "$work/ow/b.json.orig" && [ ! -e "$work/ow/b.node" ] && [ ! -e "$work/ow/b.ele" ] && [ ! -e "$work/ow/g.ele" ] && [ ! -e "$work/ow/out.vtu" ]
+  then ok "$label: exit 1, '$err'"; else bad "$label: exit $rc, '$err'"; fi
+}
+check_refused "-o b.node beside b.poly" "-o b.node's sidecar of segment names (b.json) would overwrite the input's sidecar" b.poly --size 0.2 -o b.node
+check_refused "--stats b.json beside b.poly" "--stats b.json would overwrite the input's sidecar" b.poly --size 0.2 -o out.vtu --stats b.json
+check_refused "--stats ./b.json (another spelling)" "would overwrite the input's sidecar" b.poly --size 0.2 -o out.vtu --stats "$work/ow/../ow/b.json"
+check_refused "--stats g.json with -o g.node" "--stats g.json and -o g.node's sidecar of segment names would both write g.json" b.poly --size 0.2 -o g.node --stats g.json
+check_refused "--plc-out onto the input" "--plc-out b.poly would overwrite the input" b.poly --plc-out b.poly
+"$mesh" "$work/box.poly" --size 0.2 --quiet -o "$work/ow/c.node" || bad "c.node did not mesh"
+check_refused "-o onto the --cloud file" "-o c.node would overwrite the --cloud file" b.poly --size 0.2 --cloud c.node -o c.node
+printf '{"points": 8, "segments": [{"name": "outer", "number": 1, "cells": 6}]}\n' > "$work/ow/s.json"
+cp "$work/box.poly" "$work/ow/s.poly"
+err=$(cd "$work/ow" && "$mesh" s.poly --size 0.2 -o out.vtu --quiet 2>&1 >/dev/null); rc=$?
+if [ $rc = 1 ] && [[ "$err" == *"s.json:1:"*"as a gsse-mesh --stats file does"* ]] && [ ! -e "$work/ow/out.vtu" ]; then ok "a --stats file as a sidecar: exit 1, named"
+else bad "a --stats file as a sidecar: exit $rc, '$err'"; fi
+(cd "$work/ow" && "$mesh" b.poly --size 0.2 -o b1.node --stats b1.stats.json --quiet) && cmp -s "$work/ow/b.json" "$work/ow/b.json.orig" && [ -s "$work/ow/b1.ele" ] ||
+  bad "b.poly -o b1.node --stats b1.stats.json: did not mesh, or the sidecar changed"
 exit $fail

@@ -274,7 +274,12 @@ segment_table read_sidecar(const std::string& json_path) {
   const std::string s = ss.str();
   json_scan j{s, json_path};
   if (auto i = j.find_key("segments"); i != std::string::npos)
-    j.array_at(i, [&](std::size_t& k) { t.names.push_back(j.string_at(k)); });
+    j.array_at(i, [&](std::size_t& k) {
+      if (k < s.size() && s[k] == '{')  // what a gsse-mesh --stats file holds there
+        j.fail(k, "\"segments\" lists objects, as a gsse-mesh --stats file does: a sidecar's \"segments\" is a list of "
+                  "names (docs/io.md); BASE.json beside an input is read as its sidecar, so keep statistics under another name");
+      t.names.push_back(j.string_at(k));
+    });
   if (auto i = j.find_key("numbers"); i != std::string::npos)
     j.array_at(i, [&](std::size_t& k) {
       const long v = j.integer_at(k);
