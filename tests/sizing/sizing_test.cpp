@@ -45,12 +45,19 @@ std::set<std::pair<vertex_id, vertex_id>> edges_of(const domain<3>& d, int numbe
   return e;
 }
 
-/// Edges of segment `number` joining a vertex exactly on z = a to one exactly on z = b.
-std::size_t spanning(const domain<3>& d, int number, double a, double b) {
+/// The height of a mesh point in the stack's own frame (support/stack.hpp): z, or for a turned
+/// stack z after unturn().
+double height(const point3& x, bool rotated) { return rotated ? gsse::test::unturn(x)[2] : x[2]; }
+
+/// Edges of segment `number` joining a vertex on z = a to one on z = b: exactly, or for a turned
+/// stack within 1e-9 of the film's faces (Steiner points on slanted facets are rounded; this is
+/// the test's measurement, the mesher decides nothing by it).
+std::size_t spanning(const domain<3>& d, int number, double a, double b, bool rotated = false) {
   const auto& P = d.points();
+  auto on = [&](vertex_id v, double z) { return rotated ? std::abs(height(P[v], true) - z) < 1e-9 : P[v][2] == z; };
   std::size_t n = 0;
   for (auto [u, v] : edges_of(d, number))
-    if ((P[u][2] == a && P[v][2] == b) || (P[u][2] == b && P[v][2] == a)) ++n;
+    if ((on(u, a) && on(v, b)) || (on(u, b) && on(v, a))) ++n;
   return n;
 }
 
@@ -67,16 +74,18 @@ sizing::size_field<3> two_triangles(const std::vector<point3>& pts, const std::v
 
 // A 1e-3 film on a substrate 10 times as thick and 20 times as wide, and the same film between
 // two thick layers (a liner): at least two element layers across, i.e. no edge joins the film's
-// two faces, with no size given at all (--grade alone: the local feature size).
+// two faces, with no size given at all (--grade alone: the local feature size). Axis-aligned and
+// turned (no facet parallel to an axis).
 BOOST_AUTO_TEST_CASE(thin_films_get_two_layers_without_a_size) {
   pl::options o;
   o.graded = true;
+  for (bool rotated : {false, true})
   for (const auto& z : {std::vector<double>{0, 0.01, 0.011}, std::vector<double>{0, 0.01, 0.011, 0.02}}) {
     pl::report r;
-    const auto d = mesh(stack(0.02, z), o, &r);
+    const auto d = mesh(stack(0.02, z, {}, rotated), o, &r);
     BOOST_TEST(!r.uniform_size);
     BOOST_TEST(r.min_size < 0.5e-3);
-    BOOST_TEST(spanning(d, 2, 0.01, 0.011) == 0u);
+    BOOST_TEST(spanning(d, 2, 0.01, 0.011, rotated) == 0u, (rotated ? "turned: " : "") << "edges across the film");
     // and the film is not refined beyond need: its edges are mostly above half the field's size
     // there (0.45 of the thickness, less the pieces' radii: about 0.31e-3)
     const auto& P = d.points();
@@ -85,32 +94,36 @@ BOOST_AUTO_TEST_CASE(thin_films_get_two_layers_without_a_size) {
       ++all;
       shorter += distance(P[u], P[v]) < 0.5 * r.min_size;
     }
-    BOOST_TEST(shorter < all / 10, shorter << " of " << all << " film edges below half of " << r.min_size);
+    BOOST_TEST(shorter < all / 10, (rotated ? "turned: " : "") << shorter << " of " << all << " film edges below half of " << r.min_size);
   }
-  // without the local feature size the film is crossed by single edges
+  // without the local feature size the film is crossed by single edges (so the measure sees them)
   o.sizing3.feature_size = false;
   o.size = 0.004;
-  const auto d = mesh(stack(0.02, {0, 0.01, 0.011}), o);
-  BOOST_TEST(spanning(d, 2, 0.01, 0.011) > 0u);
+  for (bool rotated : {false, true}) {
+    const auto d = mesh(stack(0.02, {0, 0.01, 0.011}, {}, rotated), o);
+    BOOST_TEST(spanning(d, 2, 0.01, 0.011, rotated) > 0u);
+  }
 }
 
 // TetGen's region attribute: a maximum volume. The segment's edges are at most 1.5 times the edge
 // of the regular tetrahedron of that volume; the other layer, unconstrained but for --size, is
-// coarser, and graded: its edges grow with the distance from the interface.
+// coarser, and graded: its edges grow with the distance from the interface. Axis-aligned and
+// turned.
 BOOST_AUTO_TEST_CASE(region_volume_constraints_are_obeyed) {
   const double V = 1e-8, hR = sizing::size_of_measure(V, 3);
   BOOST_TEST(std::abs(hR * hR * hR / (6 * std::sqrt(2.0)) - V) < 1e-15);
+  for (bool rotated : {false, true}) {
   pl::options o;
   o.size = 0.01;
   o.sizing3.grade = 1.3;
-  const auto d = mesh(stack(0.04, {0, 0.02, 0.04}, {-1, V}), o);
+  const auto d = mesh(stack(0.04, {0, 0.02, 0.04}, {-1, V}, rotated), o);
   const auto& P = d.points();
   double longest = 0;
   for (auto [u, v] : edges_of(d, 2)) longest = std::max(longest, distance(P[u], P[v]));
-  BOOST_TEST(longest <= 1.5 * hR, "longest edge " << longest << " against " << hR);
+  BOOST_TEST(longest <= 1.5 * hR, (rotated ? "turned: " : "") << "longest edge " << longest << " against " << hR);
   double far = 0;
   for (auto [u, v] : edges_of(d, 1))
-    if (P[u][2] < 0.005 && P[v][2] < 0.005) far = std::max(far, distance(P[u], P[v]));
+    if (height(P[u], rotated) < 0.005 && height(P[v], rotated) < 0.005) far = std::max(far, distance(P[u], P[v]));
   BOOST_TEST(far > 1.5 * hR);
   // and the largest tetrahedron of the constrained segment is below the volume, as TetGen's -a
   double vmax = 0;
@@ -120,7 +133,8 @@ BOOST_AUTO_TEST_CASE(region_volume_constraints_are_obeyed) {
         const point3 a = P[c[1]] - P[c[0]], b = P[c[2]] - P[c[0]], e = P[c[3]] - P[c[0]];
         vmax = std::max(vmax, std::abs(dot(cross(a, b), e)) / 6);
       }
-  BOOST_TEST(vmax <= V, "largest tetrahedron " << vmax);
+  BOOST_TEST(vmax <= V, (rotated ? "turned: " : "") << "largest tetrahedron " << vmax);
+  }
 }
 
 // The sidecar's sizing keys, read and resolved against the PLC's segment names.
@@ -194,14 +208,17 @@ BOOST_AUTO_TEST_CASE(background_size_field_is_obeyed) {
   const auto dir = std::filesystem::temp_directory_path() / "gsse_sizing_background";
   std::filesystem::create_directories(dir);
   const auto base = (dir / "bg").string();
-  auto hb = [](const point3& x) { return 0.003 + 0.2 * (x[0] + 0.01); };
+  // the stack turned too (no facet parallel to an axis), in a background that covers it
+  for (bool rotated : {false, true}) {
+  const double lo = rotated ? -0.08 : -0.01, hi = rotated ? 0.08 : 0.05;
+  auto hb = [lo](const point3& x) { return 0.003 + 0.2 * (x[0] - lo); };
   {
-    // the cube [-0.01, 0.05]^3 as 6 tetrahedra (Kuhn)
+    // the cube [lo, hi]^3 as 6 tetrahedra (Kuhn)
     std::ofstream n(base + ".node"), e(base + ".ele"), m(base + ".mtr");
     n << "8 3 0 0\n";
     m << "8 1\n";
     for (int i = 0; i < 8; ++i) {
-      const point3 q{i & 1 ? 0.05 : -0.01, i & 2 ? 0.05 : -0.01, i & 4 ? 0.05 : -0.01};
+      const point3 q{i & 1 ? hi : lo, i & 2 ? hi : lo, i & 4 ? hi : lo};
       n << i + 1 << " " << q[0] << " " << q[1] << " " << q[2] << "\n";
       m << hb(q) << "\n";
     }
@@ -214,7 +231,7 @@ BOOST_AUTO_TEST_CASE(background_size_field_is_obeyed) {
   o.sizing3.feature_size = false;
   o.sizing3.grade = 1.3;
   o.sizing3.background = sizing::read_background<3>(base + ".node");
-  const auto d = mesh(stack(0.04, {0, 0.04}), o);
+  const auto d = mesh(stack(0.04, {0, 0.04}, {}, rotated), o);
   const auto& P = d.points();
   std::size_t over = 0, all = 0;
   double worst = 0;
@@ -224,7 +241,7 @@ BOOST_AUTO_TEST_CASE(background_size_field_is_obeyed) {
     over += r > 1.5;
     ++all;
   }
-  BOOST_TEST(over == 0u, over << " of " << all << " edges above 1.5 h, worst " << worst);
+  BOOST_TEST(over == 0u, (rotated ? "turned: " : "") << over << " of " << all << " edges above 1.5 h, worst " << worst);
   // the field is the background's interpolation (linear data: exact up to rounding)
   sizing::spec<3> s;
   s.feature_size = false;
@@ -233,12 +250,13 @@ BOOST_AUTO_TEST_CASE(background_size_field_is_obeyed) {
   const std::vector<std::array<vertex_id, 3>> faces;
   const sizing::size_field<3> f = sizing::build<3>({pts, 2, faces, {}, {}, "none"}, s);
   std::mt19937 g(7);
-  std::uniform_real_distribution<double> u(-0.01, 0.05);
+  std::uniform_real_distribution<double> u(lo, hi);
   for (int i = 0; i < 100; ++i) {
     const point3 x{u(g), u(g), u(g)};
     BOOST_TEST(std::abs(f(x) - hb(x)) < 1e-12);
   }
   BOOST_TEST(std::isinf(f(point3{0.2, 0, 0})));  // outside the background mesh: no constraint
+  }
   // a .mtr with the wrong count names the file
   {
     std::ofstream m(base + ".mtr");
@@ -350,8 +368,9 @@ BOOST_AUTO_TEST_CASE(background_vtu_in_every_encoding) {
 // factor `grade` over one element), measured on random pairs; and in the mesh, the longest edge
 // at a vertex and at its neighbours differ by a bounded factor.
 BOOST_AUTO_TEST_CASE(grading_is_respected) {
+  for (bool rotated : {false, true})
   for (double G : {1.2, 1.5}) {
-    const auto p = stack(0.02, {0, 0.01, 0.011, 0.03});
+    const auto p = stack(0.02, {0, 0.01, 0.011, 0.03}, {}, rotated);
     pl::options o;
     o.graded = true;
     o.sizing3.grade = G;
@@ -379,14 +398,14 @@ BOOST_AUTO_TEST_CASE(grading_is_respected) {
           }
     // a vertex's longest edge is its neighbour's edge too, so the ratio is bounded by the
     // element shapes; it grows with G
-    BOOST_TEST(worst < 4 * G, "G " << G << ": neighbouring vertices' longest edges differ by " << worst);
+    BOOST_TEST(worst < 4 * G, (rotated ? "turned, " : "") << "G " << G << ": neighbouring vertices' longest edges differ by " << worst);
     // the smallest sizes are at the film; the top of the thick layer, 0.019 away, is coarser by
     // about (G - 1) * 0.019
     double top = 0;
     for (auto [u, v] : edges_of(d, 3))
-      if (P[u][2] > 0.028 && P[v][2] > 0.028) top = std::max(top, distance(P[u], P[v]));
-    BOOST_TEST(top <= 1.5 * (r.min_size + (G - 1) * 0.02));
-    BOOST_TEST(top > r.min_size + 0.25 * (G - 1) * 0.017);
+      if (height(P[u], rotated) > 0.028 && height(P[v], rotated) > 0.028) top = std::max(top, distance(P[u], P[v]));
+    BOOST_TEST(top <= 1.5 * (r.min_size + (G - 1) * 0.02), (rotated ? "turned, " : "") << "G " << G << ": top " << top);
+    BOOST_TEST(top > r.min_size + 0.25 * (G - 1) * 0.017, (rotated ? "turned, " : "") << "G " << G << ": top " << top);
   }
 }
 

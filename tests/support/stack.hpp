@@ -17,6 +17,15 @@ inline point3 turn(const point3& q) {
   return {std::cos(c) * y[0] - std::sin(c) * y[1], std::sin(c) * y[0] + std::cos(c) * y[1], y[2]};
 }
 
+/// turn()'s inverse (the rotations undone in reverse order): a turned stack's points in its own
+/// frame, for tests that measure along the layers.
+inline point3 unturn(const point3& q) {
+  const double a = 0.61, b = 0.37, c = 0.23;
+  const point3 y{std::cos(c) * q[0] + std::sin(c) * q[1], -std::sin(c) * q[0] + std::cos(c) * q[1], q[2]};
+  const point3 x{std::cos(b) * y[0] - std::sin(b) * y[2], y[1], std::sin(b) * y[0] + std::cos(b) * y[2]};
+  return {x[0], std::cos(a) * x[1] + std::sin(a) * x[2], -std::sin(a) * x[1] + std::cos(a) * x[2]};
+}
+
 /// Boxes stacked in z over [0, w] x [0, w]: layer k spans z[k]..z[k+1] and is segment k+1 (named
 /// layerK+1, maximum volume max_volume[k] if given). The interfaces are shared facets; each layer
 /// has its own four side facets. `rotated`: everything turned by turn().
