@@ -1,5 +1,6 @@
 #include "gsse/conformer/conformer.hpp"
 #include "gsse/sizing/place_points.hpp"
+#include "gsse/sizing/distance.hpp"
 
 #include <algorithm>
 #include <functional>
@@ -2137,20 +2138,36 @@ class state3 : public state<3> {
           if (S.constant[k]) q[k] = S.constant_value[k];
         return q;
       };
+      // what a seed keeps `keep` (half its spacing) from: the subsegments of the facet's edges,
+      // not only their points. A seed that kept off the chain's points only could lie on an edge
+      // between two of them that the size field had left far apart, and the edge's split for it
+      // (its projection) then landed a hair from it: gmsh_fillet with --grade alone had boundary
+      // points 3.6e-7 apart, 7e-6 of its shortest input edge (docs/benchmarks.md)
+      auto in_frame = [&](vertex_id w) {
+        const point3 d = out_.points[w] - origin;
+        return point2{dot(d, u), dot(d, v)};
+      };
       sizing::aabb<2> box = sizing::aabb<2>::empty();
-      std::vector<sizing::aabb<2>> at(vs.size());
-      for (std::size_t i = 0; i < vs.size(); ++i) {
-        const point3 d = out_.points[vs[i]] - origin;
-        const point2 x{dot(d, u), dot(d, v)};
-        box.add(x);
-        at[i] = {x, x};
+      for (vertex_id w : vs) box.add(in_frame(w));
+      std::vector<std::array<point2, 2>> pieces;
+      std::vector<sizing::aabb<2>> at;
+      for (auto [e, fw] : S.sides) {
+        const auto& C = edges_[e].chain;
+        for (std::size_t i = 0; i + 1 < C.size(); ++i) pieces.push_back({in_frame(C[i]), in_frame(C[i + 1])});
       }
-      const sizing::box_tree<2> corners(std::move(at), std::vector<double>(vs.size(), 0.0));
+      for (vertex_id w : S.interior) pieces.push_back({in_frame(w), in_frame(w)});
+      for (const auto& [a, b] : pieces) {
+        sizing::aabb<2> pb = sizing::aabb<2>::empty();
+        pb.add(a);
+        pb.add(b);
+        at.push_back(pb);
+      }
+      const sizing::box_tree<2> near(std::move(at), std::vector<double>(pieces.size(), 0.0));
       sizing::placement<2> where;
       where.segment_of = [&](const point2& x) { return locate(f, lift(x)) >= 0 ? 1 : sizing::no_segment; };
       where.clear = [&](const point2& x, double keep) {
-        return corners.visit([&](const sizing::aabb<2>& b) { return b.distance2(x) < keep * keep; },
-                             [&](std::uint32_t) { return false; });
+        return near.visit([&](const sizing::aabb<2>& b) { return b.distance2(x) < keep * keep; },
+                          [&](std::uint32_t g) { return sizing::segment_distance2(pieces[g][0], pieces[g][1], x) >= keep * keep; });
       };
       const double extent = std::sqrt(squared_distance(box.lo, box.hi));
       const double d0 = opt_.size > 0 ? std::min(opt_.size, extent) : 0.5 * extent;
