@@ -113,6 +113,15 @@ mesh_case() {  # name input [size]
   echo $failed > "$dir/failed"
 }
 
+# Reads the input as a PLC and meshes it once with --grade G alone (graded sizing from the local
+# feature size, no size given), checked as mesh_once's runs are. Writes $WORK/NAME/result and
+# $WORK/NAME/failed.
+graded_case() {  # name input grade
+  local name=$1 input=$2 grade=$3 dir=$WORK/$1
+  read_case "$name" "$input" 1 || return
+  if mesh_once "$name" "$input" "$dir/plc.poly" "grade=$grade" --grade "$grade" > "$dir/result"; then echo 0 > "$dir/failed"; else echo 1 > "$dir/failed"; fi
+}
+
 print_header() {
   printf '%-28s %-14s %8s %9s %7s %7s  %s\n' case mode vertices tets steiner wall_s verdict
 }
