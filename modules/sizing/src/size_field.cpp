@@ -245,7 +245,25 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
           const double cap = std::min(v, f.global_);
           double best2 = std::isfinite(cap) ? std::pow(cap / s.feature_factor + r, 2) : unbounded;
           double found2 = unbounded;
-          ftree.visit([&](const aabb<D>& bx) { return bx.distance2(c) < std::min(best2, found2); },
+          // a box whose every point x has |(x - c).n| below 0.49 |x - c| holds no nearest point
+          // 30 degrees or more out of this piece's plane (the test below asks 0.5): skipped
+          // whole. Without it a curved surface tessellated finely, with nothing across it near
+          // (no --size to bound the search), had every piece read every face beside it:
+          // occ_chair, occ_hammer, scad_csg, scad_example021 with --grade alone spent minutes
+          // here. Only boxes that cannot qualify go: the field is the same
+          const double nlen = std::sqrt(nn);
+          auto sideways = [&](const aabb<D>& bx) {
+            if (!(nlen > 0)) return false;
+            double mid = 0, spread = 0;
+            for (std::size_t k = 0; k < D; ++k) {
+              const double nk = normal[k] / nlen;
+              mid += (0.5 * (bx.lo[k] + bx.hi[k]) - c[k]) * nk;
+              spread += std::abs(nk) * 0.5 * (bx.hi[k] - bx.lo[k]);
+            }
+            const double most = std::abs(mid) + spread;
+            return most * most < 0.49 * 0.49 * bx.distance2(c);
+          };
+          ftree.visit([&](const aabb<D>& bx) { return bx.distance2(c) < std::min(best2, found2) && !sideways(bx); },
                       [&](std::uint32_t g) {
                         const std::uint32_t gs = g < b.face_source.size() ? b.face_source[g] : 0;
                         if (gs < nsrc && src < nsrc && incident(src, gs)) return true;
