@@ -766,7 +766,13 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
       for (std::size_t k = 0; k < 2; ++k)
         if (const int ri = m.l.side[f][k]; ri >= 0) sides[f][k] = m.l.regions[static_cast<std::size_t>(ri)].number;
     sizing::boundary_view<D> view{m.b.points, m.b.plc_points, m.b.faces, m.b.face_source, sides, p.source};
-    field = sizing::build(view, sp, o.threads);
+    std::function<void(std::size_t, std::size_t)> tick;
+    if (o.progress)
+      tick = [&o](std::size_t done, std::size_t all) {
+        o.progress("sizing: local feature size, " + std::to_string(done) + " of " + std::to_string(all) + " boundary faces");
+      };
+    field = sizing::build(view, sp, o.threads, tick);
+    if (o.progress) o.progress("sizing: placing points");
     r.uniform_size = field.uniform();
     r.min_size = field.minimum();
     r.size_sources = field.sources();
@@ -786,11 +792,14 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   }
   r.volume_points = volume.size();
   lap("sizing");
+  if (o.progress) o.progress("conforming the boundary (" + std::to_string(volume.size()) + " volume points)");
   auto b = conform<D>{}(p, volume, co);
   r.steiner = b.steiner;
   lap("conform");
   auto l = conformer::label(b, p, o.threads);
   lap("label");
+  if (o.progress)
+    o.progress("meshing " + std::to_string(l.regions.size()) + " segments (" + std::to_string(b.points.size()) + " points)");
   rules::rule_set defaults;
   front::creation_options fo;
   if (creating) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <mutex>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -123,16 +124,19 @@ void split(const simplex_pts<D>& s, std::vector<simplex_pts<D>>& out) {
 
 template <std::size_t D>
 struct field_builder {
-  static size_field<D> run(const boundary_view<D>& b, const spec<D>& s, unsigned threads);
+  static size_field<D> run(const boundary_view<D>& b, const spec<D>& s, unsigned threads,
+                           const std::function<void(std::size_t, std::size_t)>& progress);
 };
 
 template <std::size_t D>
-size_field<D> build(const boundary_view<D>& b, const spec<D>& s, unsigned threads) {
-  return field_builder<D>::run(b, s, threads);
+size_field<D> build(const boundary_view<D>& b, const spec<D>& s, unsigned threads,
+                    const std::function<void(std::size_t, std::size_t)>& progress) {
+  return field_builder<D>::run(b, s, threads, progress);
 }
 
 template <std::size_t D>
-size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s, unsigned threads) {
+size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s, unsigned threads,
+                                    const std::function<void(std::size_t, std::size_t)>& progress) {
   if (!(s.grade > 1)) throw std::invalid_argument("the grade must be above 1");
   size_field<D> f;
   f.slope_ = f.max_slope_ = s.grade - 1;
@@ -221,7 +225,13 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
   for (std::size_t k = 0; k < nf; ++k) ids[k] = k;
   std::atomic<std::size_t> total{0};
   std::atomic<bool> overflow{false};
+  std::atomic<std::size_t> faces_done{0};
+  std::mutex progress_lock;
   for_each(execution::par(threads), ids, [&](std::size_t k) {
+    if (progress && (faces_done.fetch_add(1, std::memory_order_relaxed) + 1) % 4096 == 0) {
+      const std::lock_guard<std::mutex> hold(progress_lock);
+      progress(faces_done.load(std::memory_order_relaxed), nf);
+    }
     const double fixed = side_value(k);
     const std::uint32_t src = k < b.face_source.size() ? b.face_source[k] : 0;
     std::vector<simplex_pts<D>> todo{face_pts(k)}, next;
@@ -363,7 +373,9 @@ template double size_field<2>::operator()(const point2&, int) const;
 template double size_field<3>::operator()(const point3&, int) const;
 template void add_region_volumes<2>(spec<2>&, const plc<2>&);
 template void add_region_volumes<3>(spec<3>&, const plc<3>&);
-template size_field<2> build<2>(const boundary_view<2>&, const spec<2>&, unsigned);
-template size_field<3> build<3>(const boundary_view<3>&, const spec<3>&, unsigned);
+template size_field<2> build<2>(const boundary_view<2>&, const spec<2>&, unsigned,
+                                const std::function<void(std::size_t, std::size_t)>&);
+template size_field<3> build<3>(const boundary_view<3>&, const spec<3>&, unsigned,
+                                const std::function<void(std::size_t, std::size_t)>&);
 
 }  // namespace gsse::sizing

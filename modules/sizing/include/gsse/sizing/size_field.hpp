@@ -22,6 +22,7 @@
 //
 // Sizing only: the values are doubles that place points; they decide no topology.
 #include <array>
+#include <functional>
 #include <cstddef>
 #include <limits>
 #include <map>
@@ -129,8 +130,10 @@ struct boundary_view {
 
 /// Builds the field from the boundary. Parallel over faces; the same field for any thread count.
 /// Throws std::runtime_error when the features are so small that the field would need more than
-/// 2e7 pieces.
+/// 2e7 pieces. `progress` (optional) is called now and then with the faces done and their total
+/// (from any worker thread, one call at a time).
 template <std::size_t D>
-size_field<D> build(const boundary_view<D>& b, const spec<D>& s, unsigned threads = 1);
+size_field<D> build(const boundary_view<D>& b, const spec<D>& s, unsigned threads = 1,
+                    const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 }  // namespace gsse::sizing
