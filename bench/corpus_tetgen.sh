@@ -38,7 +38,7 @@ echo "|---|---|---|---|---|---|"
 for item in "${inputs[@]}"; do
   name=${item%%=*}; input=${item#*=}
   if [ $# -gt 0 ] && [[ " $* " != *" $name "* ]]; then continue; fi
-  poly=$work/$name.poly
+  poly=$work/$name.plc.poly  # not NAME.poly: its sidecar NAME.json is the input's, which gsse-mesh refuses to write
   "$mesh" "$input" --plc-out "$poly" > /dev/null 2>&1 || { echo "| $name | read error | | | | |"; continue; }
   np=$(count "$poly")
   size=$(size_of "$poly")
