@@ -28,6 +28,11 @@
 
 namespace {
 
+bool ends_with(const std::string& s, const char* e) {
+  const std::size_t n = std::strlen(e);
+  return s.size() >= n && s.compare(s.size() - n, std::string::npos, e) == 0;
+}
+
 void usage(std::FILE* to) {
   std::fputs(
       "usage: gsse-mesh INPUT [-o OUTPUT] [--size H] [--cloud POINTS.node] [--threads N] [--verify]\n"
@@ -120,7 +125,7 @@ void refuse_overwrites(const args& a) {
     if (!bg.empty()) {
       const fs::path rel(bg);
       const std::string at = rel.is_absolute() ? rel.string() : (fs::path(sidecar).parent_path() / rel).string();
-      if (at.size() > 4 && at.compare(at.size() - 4, 4, ".vtu") == 0)
+      if (at.size() > 4 && ends_with(at, ".vtu"))
         reads.push_back({at, "the background mesh"});
       else
         for (const char* e : {".node", ".ele", ".mtr"}) reads.push_back({gsse::io::base_of(at) + e, "the background mesh"});
@@ -128,7 +133,7 @@ void refuse_overwrites(const args& a) {
   }
   if (a.check.empty()) {
     const std::string& out = a.output;
-    auto ends = [&](const char* e) { return out.size() >= std::strlen(e) && out.compare(out.size() - std::strlen(e), std::string::npos, e) == 0; };
+    auto ends = [&](const char* e) { return ends_with(out, e); };
     if (ends(".vtu")) {
       writes.push_back({out, "-o " + out});
       writes.push_back({gsse::io::boundary_vtu_path(out), "-o " + out + "'s boundary companion"});
@@ -149,7 +154,7 @@ void refuse_overwrites(const args& a) {
     for (const auto& [path, what] : reads)
       if (same(writes[w].first, path)) {
         const auto& [file, who] = writes[w];
-        const bool named = who.size() >= file.size() && who.compare(who.size() - file.size(), file.size(), file) == 0;
+        const bool named = ends_with(who, file.c_str());
         throw std::runtime_error(who + (named ? "" : " (" + file + ")") + " would overwrite " + what + ": choose another name");
       }
     for (std::size_t v = 0; v < w; ++v)
@@ -169,7 +174,7 @@ int verdict(const std::vector<std::string>& problems, bool print, const char* wh
 template <std::size_t D>
 int check(const gsse::plc<D>& p, const args& a) {
   const std::string& m = a.check;
-  auto ends = [&](const char* e) { return m.size() >= std::strlen(e) && m.compare(m.size() - std::strlen(e), std::string::npos, e) == 0; };
+  auto ends = [&](const char* e) { return ends_with(m, e); };
   const gsse::domain<D> d = ends(".msh") ? gsse::io::read_msh<D>(m) : gsse::io::read_node_ele<D>(m);
   gsse::verify::options vo;
   vo.threads = a.threads;
@@ -250,7 +255,7 @@ int run(const gsse::plc<D>& p, const args& a) {
   if (!a.output.empty() && problems.empty()) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::string& out = a.output;
-    auto ends = [&](const char* e) { return out.size() >= std::strlen(e) && out.compare(out.size() - std::strlen(e), std::string::npos, e) == 0; };
+    auto ends = [&](const char* e) { return ends_with(out, e); };
     if (ends(".vtu"))
       gsse::io::write_vtu(d, out);
     else if (ends(".msh"))

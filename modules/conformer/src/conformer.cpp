@@ -2117,7 +2117,7 @@ class state3 : public state<3> {
 
   /// Graded sizing: each facet seeded with the size field's points in its plane (the dyadic
   /// lattices of sizing::place_points, triangular, in the same global frame as seed_facets), kept
-  /// half their spacing from the facet's boundary vertices. Without it the facets would be
+  /// half their spacing from the facet's edges (their subsegments) and interior points. Without it the facets would be
   /// refined from their corners by circumcentres, a few rows per round.
   void seed_facets_graded() {
     const point3 origin = box_lo_;

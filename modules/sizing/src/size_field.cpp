@@ -265,10 +265,10 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
           auto sideways = [&](const aabb<D>& bx) {
             if (!(nlen > 0)) return false;
             double mid = 0, spread = 0;
-            for (std::size_t k = 0; k < D; ++k) {
-              const double nk = normal[k] / nlen;
-              mid += (0.5 * (bx.lo[k] + bx.hi[k]) - c[k]) * nk;
-              spread += std::abs(nk) * 0.5 * (bx.hi[k] - bx.lo[k]);
+            for (std::size_t j = 0; j < D; ++j) {
+              const double nj = normal[j] / nlen;
+              mid += (0.5 * (bx.lo[j] + bx.hi[j]) - c[j]) * nj;
+              spread += std::abs(nj) * 0.5 * (bx.hi[j] - bx.lo[j]);
             }
             const double most = std::abs(mid) + spread;
             return most * most < 0.49 * 0.49 * bx.distance2(c);
