@@ -83,7 +83,8 @@ void usage(std::FILE* to) {
       "           number as element attribute, any mesher's) against INPUT, as --verify does, and\n"
       "           exit: status 0 if it passes, 3 if not (the problems on stderr)\n"
       "  --plc-out write the input as read (with the region points placed in Gmsh volumes) as a\n"
-      "           TetGen/Triangle .poly and exit without meshing\n",
+      "           TetGen/Triangle .poly and exit without meshing (none of -o, --stats, --check, --cloud,\n"
+      "           --size, --verify, --quality, --grade with it)\n",
       to);
 }
 
@@ -104,12 +105,15 @@ struct args {
 /// twice. The traps: `-o m.node` beside m.poly writes the segment names to m.json, which is
 /// m.poly's sidecar (its sizing keys and anything else in it would be lost); `--stats m.json`
 /// beside m.poly is read back as the sidecar by the next run; `--stats g.json` with `-o g.node`
-/// overwrites the mesh's own sidecar. Paths are compared after making them absolute and
-/// canonical (symbolic links resolved where the file exists).
+/// overwrites the mesh's own sidecar. Two existing paths are the same if they name one file
+/// (symbolic and hard links too); others are compared after making them absolute and canonical.
+/// The input's sidecar is refused as an output even where it does not exist yet: written, it
+/// would be read back by the next run on the input (docs/io.md).
 void refuse_overwrites(const args& a) {
   namespace fs = std::filesystem;
   auto same = [](const std::string& x, const std::string& y) {
     std::error_code e1, e2;
+    if (fs::exists(x, e1) && fs::exists(y, e2)) return fs::equivalent(x, y, e1) && !e1;  // hard links too
     const fs::path px = fs::weakly_canonical(fs::absolute(x), e1), py = fs::weakly_canonical(fs::absolute(y), e2);
     return !e1 && !e2 ? px == py : fs::absolute(x).lexically_normal() == fs::absolute(y).lexically_normal();
   };
@@ -125,10 +129,7 @@ void refuse_overwrites(const args& a) {
     if (!bg.empty()) {
       const fs::path rel(bg);
       const std::string at = rel.is_absolute() ? rel.string() : (fs::path(sidecar).parent_path() / rel).string();
-      if (at.size() > 4 && ends_with(at, ".vtu"))
-        reads.push_back({at, "the background mesh"});
-      else
-        for (const char* e : {".node", ".ele", ".mtr"}) reads.push_back({gsse::io::base_of(at) + e, "the background mesh"});
+      for (const auto& f : gsse::sizing::background_files(at)) reads.push_back({f, "the background mesh"});
     }
   }
   if (a.check.empty()) {
@@ -484,6 +485,12 @@ int main(int argc, char** argv) {
   if (a.verify_tol_given && a.check.empty()) a.verify = true;  // --verify-tol implies --verify
   if (!a.check.empty() && (!a.output.empty() || !a.stats.empty() || !a.cloud.empty() || a.size > 0 || a.verify)) {
     std::fprintf(stderr, "gsse-mesh: --check verifies an existing mesh: it takes none of -o, --stats, --cloud, --size, --verify\n");
+    usage(stderr);
+    return 2;
+  }
+  if (!a.plc_out.empty() && (!a.check.empty() || !a.output.empty() || !a.stats.empty() || !a.cloud.empty() || a.size > 0 || a.verify || a.quality ||
+                             a.grade > 0)) {
+    std::fprintf(stderr, "gsse-mesh: --plc-out writes the input as read and meshes nothing: it takes none of --check, -o, --stats, --cloud, --size, --verify, --quality, --grade\n");
     usage(stderr);
     return 2;
   }

@@ -231,6 +231,21 @@ check_refused "--stats g.json with -o g.node" "--stats g.json and -o g.node's si
 check_refused "--plc-out onto the input" "--plc-out b.poly would overwrite the input" b.poly --plc-out b.poly
 "$mesh" "$work/box.poly" --size 0.2 --quiet -o "$work/ow/c.node" || bad "c.node did not mesh"
 check_refused "-o onto the --cloud file" "-o c.node would overwrite the --cloud file" b.poly --size 0.2 --cloud c.node -o c.node
+ln "$work/ow/b.json" "$work/ow/h.json"
+check_refused "--stats h.json, a hard link to the sidecar" "--stats h.json would overwrite the input's sidecar" b.poly --size 0.2 -o out.vtu --stats h.json
+rm "$work/ow/h.json"
+mkdir "$work/ow/bg"
+cp "$work/box.poly" "$work/ow/bg/k.poly"
+printf '{"background": "m.v1"}\n' > "$work/ow/bg/k.json"
+cp "$work/ow/bg/k.json" "$work/ow/bg/k.json.orig"
+err=$(cd "$work/ow/bg" && "$mesh" k.poly --grade 1.3 -o m.v1.node --quiet 2>&1 >/dev/null); rc=$?
+if [ $rc = 1 ] && [[ "$err" == *"-o m.v1.node would overwrite the background mesh"* ]] && cmp -s "$work/ow/bg/k.json" "$work/ow/bg/k.json.orig" && [ ! -e "$work/ow/bg/m.v1.node" ]
+then ok "-o onto the background mesh 'm.v1' (read as m.v1.node): exit 1, '$err'"; else bad "-o onto the background mesh 'm.v1': exit $rc, '$err'"; fi
+for extra in "-o x.vtu" "--stats x.json" "--check b.node" "--size 0.2" "--verify" "--quality"; do
+  err=$(cd "$work/ow" && "$mesh" b.poly --plc-out p.poly $extra 2>&1 >/dev/null); rc=$?
+  if [ $rc = 2 ] && [[ "$err" == *"--plc-out writes the input as read and meshes nothing"* ]] && [ ! -e "$work/ow/p.poly" ] && [ ! -e "$work/ow/x.vtu" ] && [ ! -e "$work/ow/x.json" ]
+  then ok "--plc-out with $extra: exit 2"; else bad "--plc-out with $extra: exit $rc, '$err'"; fi
+done
 printf '{"points": 8, "segments": [{"name": "outer", "number": 1, "cells": 6}]}\n' > "$work/ow/s.json"
 cp "$work/box.poly" "$work/ow/s.poly"
 err=$(cd "$work/ow" && "$mesh" s.poly --size 0.2 -o out.vtu --quiet 2>&1 >/dev/null); rc=$?

@@ -82,9 +82,8 @@ std::shared_ptr<const typename spec<D>::background_mesh> read_background_vtu(con
 
 }  // namespace
 
-template <std::size_t D>
-std::shared_ptr<const typename spec<D>::background_mesh> read_background(const std::string& path) {
-  if (path.size() > 4 && path.compare(path.size() - 4, 4, ".vtu") == 0) return read_background_vtu<D>(path);
+std::vector<std::string> background_files(const std::string& path) {
+  if (path.size() > 4 && path.compare(path.size() - 4, 4, ".vtu") == 0) return {path};
   std::string base = path;
   for (const char* e : {".node", ".ele", ".mtr"}) {
     const std::string ext = e;
@@ -93,6 +92,14 @@ std::shared_ptr<const typename spec<D>::background_mesh> read_background(const s
       break;
     }
   }
+  return {base + ".node", base + ".ele", base + ".mtr"};
+}
+
+template <std::size_t D>
+std::shared_ptr<const typename spec<D>::background_mesh> read_background(const std::string& path) {
+  const std::vector<std::string> files = background_files(path);
+  if (files.size() == 1) return read_background_vtu<D>(path);
+  const std::string base = files[0].substr(0, files[0].size() - 5);  // BASE.node without .node
   const domain<D> d = io::read_node_ele<D>(base);
   auto B = std::make_shared<typename spec<D>::background_mesh>();
   B->source = base + ".mtr";

@@ -4,6 +4,7 @@
 // TetGen's metric file: a line '<#points> 1', then one value per line).
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "gsse/io/sidecar.hpp"
 #include "gsse/sizing/size_field.hpp"
@@ -17,6 +18,10 @@ namespace gsse::sizing {
 /// positive.
 template <std::size_t D>
 std::shared_ptr<const typename spec<D>::background_mesh> read_background(const std::string& path);
+
+/// The files read_background reads for `path`: the .vtu itself, or BASE.node, BASE.ele and
+/// BASE.mtr (only a trailing .node, .ele or .mtr is taken off `path`; any other name is BASE).
+std::vector<std::string> background_files(const std::string& path);
 
 /// Adds the sidecar's sizing keys to `s`: segment sizes and interfaces by segment name (as the
 /// PLC's regions are named) or number, boxes of the PLC's dimension, the background mesh (path
