@@ -48,7 +48,9 @@ struct options {
   bool verify = false;   // run the library verifier (gsse::verify::check against the input PLC) at the end
   double verify_tolerance = verify::options{}.facet_tolerance;  // the verifier's facet tolerance
   conformer::options conform{};
-  std::function<void(const std::string&)> progress;  // stage messages, may be empty
+  // stage messages, may be empty; called from the calling thread or, while the size field is built,
+  // from a worker thread (one call at a time: a callback that only prints needs no lock of its own)
+  std::function<void(const std::string&)> progress;
 };
 
 struct stage_time {
