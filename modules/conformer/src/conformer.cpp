@@ -2166,6 +2166,13 @@ class state3 : public state<3> {
       sizing::placement<2> where;
       where.segment_of = [&](const point2& x) { return locate(f, lift(x)) >= 0 ? 1 : sizing::no_segment; };
       where.clear = [&](const point2& x, double keep) {
+        // and off the protecting balls of the facet's corners by `keep`: a seed inside one is an
+        // encroacher no split ends (its image is pushed out to the sphere, onto the image before it)
+        if (!S.balls.empty()) {
+          const point3 q = lift(x);
+          for (vertex_id b : S.balls)
+            if (const double r = ball(b) + keep; squared_distance(q, out_.points[b]) < r * r) return false;
+        }
         return near.visit([&](const sizing::aabb<2>& b) { return b.distance2(x) < keep * keep; },
                           [&](std::uint32_t g) { return sizing::segment_distance2(pieces[g][0], pieces[g][1], x) >= keep * keep; });
       };
