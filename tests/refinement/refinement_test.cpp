@@ -740,6 +740,20 @@ BOOST_AUTO_TEST_CASE(bench_structures_refined) {
     BOOST_TEST(q.below5 + q.above170 == 0u);
   }
   {
+    // the FinFET graded from its feature size alone (its thin gate oxide): the lattice's levels
+    // mix, and no sliver is left, none excepted (right angles only). Lattice points an ulp off
+    // their plane made 26 flat tetrahedra here, excepted below the spacing floor (docs/
+    // benchmarks.md, twenty-seventh part)
+    const auto p = std::get<plc<3>>(io::read_plc(gsse::test::bench_structure(*shared, "finfet", 3)));
+    pl::report r;
+    const auto d = refined(p, 1.414, 2, r);
+    BOOST_TEST(!r.uniform_size);
+    BOOST_TEST(r.refinement.converged);
+    BOOST_TEST(r.refinement.excepted == 0u, "finfet graded: " << r.refinement.excepted << " excepted");
+    const auto q = pl::measure(d);
+    BOOST_TEST(q.below5 + q.above170 == 0u, "finfet graded: " << q.below5 << " below 5 degrees, min " << q.min_angle);
+  }
+  {
     // down to 1.2 where the input angles allow (right angles only): the MOSFET within 60 rounds
     // (22; it took 144 rounds and 2.4 times the points while every encroaching element had every
     // face it encroaches split, docs/benchmarks.md, twenty-second part)

@@ -70,8 +70,15 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
     // cube at `level` with min corner index i (in units of a0 / 2^level)
     auto visit = [&](auto&& self, const std::array<std::int64_t, D>& i, int level) -> void {
       const double a = std::ldexp(a0, -level), d = std::ldexp(d0, -level);
+      // the centre as the next level's corner 2i + 1, by the same formula: lo + a / 2 rounds
+      // differently, and centres then sat an ulp off the plane of the corners beside them, whose
+      // nearly coplanar, cocircular squares made flat tetrahedra (the FinFET with --grade)
       point<D> lo = coord(i, level), c;
-      for (std::size_t k = 0; k < D; ++k) c[k] = lo[k] + 0.5 * a;
+      {
+        std::array<std::int64_t, D> ic;
+        for (std::size_t k = 0; k < D; ++k) ic[k] = 2 * i[k] + 1;
+        c = coord(ic, level + 1);
+      }
       // skip cubes (with their neighbourhood of one spacing) outside the model's box
       for (std::size_t k = 0; k < D; ++k)
         if (lo[k] > box.hi[k] + a || lo[k] + a < box.lo[k] - a) return;
