@@ -6,8 +6,9 @@
 // stretch of 1.2 made the edges next to the boundary reach 1.9 h), so where h is one number
 // (and d0 is it) the points are the BCC
 // lattice of that spacing and where it varies the spacing follows it in steps of two. Candidates
-// (deduplicated: levels share corners exactly, the coordinates being dyadic multiples of one
-// spacing) are then taken greedily, coarse levels first, dropping a point that lies in no segment,
+// (deduplicated: levels share corners exactly, every coordinate, a cube's centre included, being
+// computed by one formula as the origin plus a dyadic multiple of one spacing, so points on one
+// lattice plane are exactly coplanar) are then taken greedily, coarse levels first, dropping a point that lies in no segment,
 // nearer than half its spacing to the boundary, or nearer than 0.8 of the smaller spacing to a
 // point already taken. The classification is parallel; the greedy pass is sequential, in a fixed
 // order, so the points are the same for any thread count.
