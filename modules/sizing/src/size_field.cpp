@@ -227,11 +227,18 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
   std::atomic<bool> overflow{false};
   std::atomic<std::size_t> faces_done{0};
   std::mutex progress_lock;
+  // progress: faces finished (counted as each face's work ends, however it ends), every 4096th
+  struct on_exit {
+    std::function<void()> f;
+    ~on_exit() { f(); }
+  };
   for_each(execution::par(threads), ids, [&](std::size_t k) {
-    if (progress && (faces_done.fetch_add(1, std::memory_order_relaxed) + 1) % 4096 == 0) {
-      const std::lock_guard<std::mutex> hold(progress_lock);
-      progress(faces_done.load(std::memory_order_relaxed), nf);
-    }
+    const on_exit tick{[&] {
+      if (progress && (faces_done.fetch_add(1, std::memory_order_relaxed) + 1) % 4096 == 0) {
+        const std::lock_guard<std::mutex> hold(progress_lock);
+        progress(faces_done.load(std::memory_order_relaxed), nf);
+      }
+    }};
     const double fixed = side_value(k);
     const std::uint32_t src = k < b.face_source.size() ? b.face_source[k] : 0;
     std::vector<simplex_pts<D>> todo{face_pts(k)}, next;
