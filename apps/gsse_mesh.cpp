@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -391,13 +392,27 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw std::invalid_argument("option " + s + " needs a value");
         return argv[++i];
       };
+      // a number taking the whole value ("0.2abc", "abc" and "" are refused, naming the option)
+      auto real = [&](const std::string& v) {
+        char* end = nullptr;
+        const double x = std::strtod(v.c_str(), &end);
+        if (v.empty() || end != v.c_str() + v.size()) throw std::invalid_argument(s + ": '" + v + "' is not a number");
+        return x;
+      };
+      auto whole = [&](const std::string& v) {
+        char* end = nullptr;
+        errno = 0;
+        const long x = std::strtol(v.c_str(), &end, 10);
+        if (v.empty() || end != v.c_str() + v.size() || errno == ERANGE) throw std::invalid_argument(s + ": '" + v + "' is not a whole number");
+        return x;
+      };
       if (s == "-h" || s == "--help") {
         usage(stdout);
         return 0;
       } else if (s == "-o") {
         a.output = value();
       } else if (s == "--size") {
-        a.size = std::stod(value());
+        a.size = real(value());
         if (!(a.size > 0)) throw std::invalid_argument("--size must be positive");
       } else if (s == "--cloud") {
         a.cloud = value();
@@ -425,15 +440,17 @@ int main(int argc, char** argv) {
         if (a.plc_out.size() < 5 || a.plc_out.compare(a.plc_out.size() - 5, 5, ".poly") != 0)
           throw std::invalid_argument("--plc-out must name a .poly file");
       } else if (s == "--max-steiner") {
-        a.max_steiner = std::stoul(value());
+        const long n = whole(value());
+        if (n < 0) throw std::invalid_argument("--max-steiner must not be negative");
+        a.max_steiner = static_cast<std::size_t>(n);
       } else if (s == "--check") {
         a.check = value();
       } else if (s == "--verify-tol") {
-        a.verify_tol = std::stod(value());
+        a.verify_tol = real(value());
         if (!(a.verify_tol >= 0 && a.verify_tol < 1)) throw std::invalid_argument("--verify-tol must be in [0, 1)");
         a.verify_tol_given = true;
       } else if (s == "--grade") {
-        a.grade = std::stod(value());
+        a.grade = real(value());
         if (!(a.grade > 1) || !std::isfinite(a.grade)) throw std::invalid_argument("--grade must be a number above 1");
       } else if (s == "--quality") {
         a.quality = true;
@@ -448,14 +465,14 @@ int main(int argc, char** argv) {
           }
         }
       } else if (s == "--quality-rounds") {
-        const long n = std::stol(value());
+        const long n = whole(value());
         if (n < 1 || n > 100000) throw std::invalid_argument("--quality-rounds must be in [1, 100000]");
         a.quality_rounds = static_cast<std::size_t>(n);
       } else if (s == "--acute-guard") {
-        a.acute_guard = std::stod(value());
+        a.acute_guard = real(value());
         if (!(a.acute_guard >= 0 && a.acute_guard <= 100)) throw std::invalid_argument("--acute-guard must be in [0, 100]");
       } else if (s == "--sliver-angle") {
-        a.sliver_angle = std::stod(value());
+        a.sliver_angle = real(value());
         if (!(a.sliver_angle >= 0 && a.sliver_angle < 30)) throw std::invalid_argument("--sliver-angle must be in [0, 30)");
       } else if (s == "--no-feature-size") {
         a.no_feature = true;

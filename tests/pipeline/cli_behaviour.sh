@@ -212,6 +212,15 @@ else bad "--check, inner box relabelled: exit $rc, '$err'"; fi
 msg=$("$mesh" "$work/box.poly" --check "$work/m.node" -o "$work/x.vtu" 2>&1); rc=$?
 if [ $rc = 2 ] && [ ! -e "$work/x.vtu" ]; then ok "--check with -o: exit 2"; else bad "--check with -o: exit $rc"; fi
 
+# numbers: the whole value must be one, the option named (stod took "0.2abc" as 0.2, "abc" failed
+# as "stod", and --max-steiner -1 wrapped round to a huge limit)
+for bad_arg in "--size 0.2abc:--size: '0.2abc' is not a number" "--grade abc:--grade: 'abc' is not a number" \
+               "--quality-rounds 3x:--quality-rounds: '3x' is not a whole number" "--max-steiner -1:--max-steiner must not be negative"; do
+  opt=${bad_arg%%:*}; want=${bad_arg#*:}
+  err=$("$mesh" "$work/box.poly" $opt -o "$work/n.vtu" 2>&1 >/dev/null); rc=$?
+  if [ $rc = 2 ] && [[ "$err" == *"$want"* ]] && [ ! -e "$work/n.vtu" ]; then ok "$opt: exit 2, '$want'"; else bad "$opt: exit $rc, '$(echo "$err" | head -1)'"; fi
+done
+
 # overwrites: refused before any work, the files as they were
 mkdir "$work/ow"
 cp "$work/box.poly" "$work/ow/b.poly"
