@@ -20,10 +20,10 @@
 #   scad_linear_extrude: its refinement runs past the 120 s timeout with 2 threads two at a time
 #     (alone at 1.414: 103 s, 1.6 GB, 1.5 million points, converged in 87 rounds).
 # With a grade, left out unless named or GSSE_CORPUS_ALL=1 (modules/sizing/README.md, "Not yet";
-# 2026-11-28, 2 threads, two at a time; all 49 pass with a 120 s timeout but these two):
-#   slow: scad_example021 (3.3 million points, 2.9 GB, 63 s alone), scad_linear_extrude (65 s
-#     alone), scad_example004, scad_csg, occ_hammer, occ_chair, gmsh_t13, gmsh_t19, gmsh_pipe,
-#     gmsh_indheat, scad_example023, scad_sign (13-40 s each).
+# 2026-11-29, 2 threads, two at a time; all 49 pass with a 120 s timeout):
+#   slow: scad_example021 (3.3 million points, 2.9 GB, 87 s), scad_linear_extrude (90 s),
+#     scad_example004, scad_csg, occ_hammer, occ_chair, gmsh_t13, gmsh_t19, gmsh_pipe,
+#     gmsh_indheat, scad_example023, scad_sign (10-46 s each).
 set -uo pipefail
 MESH=$1; src=$2; shift 2
 here=$src/tests/corpus

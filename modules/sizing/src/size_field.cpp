@@ -280,7 +280,8 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
             const double most = std::abs(mid) + spread;
             return most * most < 0.49 * 0.49 * bx.distance2(c);
           };
-          ftree.visit([&](const aabb<D>& bx) { return bx.distance2(c) < std::min(best2, found2) && !sideways(bx); },
+          // nearer boxes first: a face across found early bounds the rest of the search
+          ftree.visit_near(c, [&](const aabb<D>& bx) { return bx.distance2(c) < std::min(best2, found2) && !sideways(bx); },
                       [&](std::uint32_t g) {
                         const std::uint32_t gs = g < b.face_source.size() ? b.face_source[g] : 0;
                         if (gs < nsrc && src < nsrc && incident(src, gs)) return true;
