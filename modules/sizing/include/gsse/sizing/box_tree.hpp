@@ -104,28 +104,20 @@ class box_tree {
   /// `keep` accepts (e.g. "within distance r of q" or "contains q"). f returning false stops.
   template <class Keep, class F>
   bool visit(Keep&& keep, F&& f) const {
-    if (nodes_.empty()) return true;
-    std::uint32_t stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const node& n = nodes_[stack[--top]];
-      if (!keep(n.box)) continue;
-      if (n.leaf) {
-        for (std::uint32_t k = n.a; k < n.b; ++k)
-          if (keep(boxes_[order_[k]]) && !f(order_[k])) return false;
-        continue;
-      }
-      stack[top++] = n.b;
-      stack[top++] = n.a;
-    }
-    return true;
+    return walk(keep, f, [](const node&) { return true; });
   }
 
   /// visit, the nearer child (by box distance to q) first: for searches whose `keep` tightens as
   /// `f` finds closer items (a nearest-feature search), which then skip more.
   template <class Keep, class F>
   bool visit_near(const point<D>& q, Keep&& keep, F&& f) const {
+    return walk(keep, f, [&](const node& n) { return nodes_[n.a].box.distance2(q) <= nodes_[n.b].box.distance2(q); });
+  }
+
+ private:
+  /// The depth-first walk of visit and visit_near; `a_first(inner node)`: its child a before b.
+  template <class Keep, class F, class Order>
+  bool walk(Keep& keep, F& f, Order&& a_first) const {
     if (nodes_.empty()) return true;
     std::uint32_t stack[128];
     int top = 0;
@@ -138,14 +130,12 @@ class box_tree {
           if (keep(boxes_[order_[k]]) && !f(order_[k])) return false;
         continue;
       }
-      const bool a_first = nodes_[n.a].box.distance2(q) <= nodes_[n.b].box.distance2(q);
-      stack[top++] = a_first ? n.b : n.a;
-      stack[top++] = a_first ? n.a : n.b;
+      const bool af = a_first(n);
+      stack[top++] = af ? n.b : n.a;
+      stack[top++] = af ? n.a : n.b;
     }
     return true;
   }
-
- private:
   static constexpr std::uint32_t leaf_size = 8;
   struct node {
     aabb<D> box;
