@@ -11,6 +11,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 #include <utility>
 #include <variant>
@@ -91,6 +92,7 @@ void usage(std::FILE* to) {
 
 struct args {
   std::string input, output, cloud, stats, rules, fill, plc_out, check;
+  std::vector<std::string> meshing;  // the options given that concern meshing (--plc-out takes none)
   double size = 0, verify_tol = gsse::verify::options{}.facet_tolerance, grade = 0, quality_bound = 0;
   bool quality = false;
   double sliver_angle = gsse::refinement::options{}.sliver_angle;
@@ -165,6 +167,11 @@ void refuse_overwrites(const args& a) {
   }
 }
 
+/// A usage error found after the input is read (exit status 2, as one found in the arguments).
+struct usage_error : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
 /// The verifier's verdict, as --verify and --check print it: problems on stderr; exit status 3 if any.
 int verdict(const std::vector<std::string>& problems, bool print, const char* what) {
   if (print) std::printf("%s: %s\n", what, problems.empty() ? "PASS" : "FAIL");
@@ -205,7 +212,14 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.sliver_angle = a.sliver_angle;
   o.acute_guard = a.acute_guard;
   o.quality_rounds = a.quality_rounds;
-  if (a.quality) gsse::refinement::ratio_bound(D, a.quality_bound);  // a bound out of range is a usage error
+  if (a.quality) {
+    // a bound out of range is a usage error (exit 2), found only here: its range is the dimension's
+    try {
+      gsse::refinement::ratio_bound(D, a.quality_bound);
+    } catch (const std::invalid_argument& e) {
+      throw usage_error(e.what());
+    }
+  }
   o.verify_tolerance = a.verify_tol;
   o.conform.max_steiner = a.max_steiner;
   {
@@ -386,17 +400,23 @@ int run(const gsse::plc<D>& p, const args& a) {
 int main(int argc, char** argv) {
   args a;
   try {
+    // every option but these meshes, writes a mesh or checks one: --plc-out, which meshes nothing,
+    // refuses them rather than ignore them
+    static const std::set<std::string> not_meshing{"--plc-out", "--threads", "--no-merge", "--quiet", "-h", "--help"};
     for (int i = 1; i < argc; ++i) {
       const std::string s = argv[i];
+      if (s.size() > 1 && s[0] == '-' && !not_meshing.count(s)) a.meshing.push_back(s);
       auto value = [&]() -> std::string {
         if (i + 1 >= argc) throw std::invalid_argument("option " + s + " needs a value");
         return argv[++i];
       };
-      // a number taking the whole value ("0.2abc", "abc" and "" are refused, naming the option)
+      // a finite number taking the whole value ("0.2abc", "abc", "", "inf", "nan" and "1e999" are
+      // refused, naming the option)
       auto real = [&](const std::string& v) {
         char* end = nullptr;
-        const double x = std::strtod(v.c_str(), &end);
-        if (v.empty() || end != v.c_str() + v.size()) throw std::invalid_argument(s + ": '" + v + "' is not a number");
+        const double x = std::strtod(v.c_str(), &end);  // an overflow gives HUGE_VAL, not finite
+        if (v.empty() || end != v.c_str() + v.size() || !std::isfinite(x))
+          throw std::invalid_argument(s + ": '" + v + "' is not a finite number");
         return x;
       };
       auto whole = [&](const std::string& v) {
@@ -418,10 +438,8 @@ int main(int argc, char** argv) {
         a.cloud = value();
       } else if (s == "--threads") {
         const std::string v = value();
-        std::size_t used = 0;
-        const long n = v.empty() || v[0] == '-' || v[0] == '+' ? -1 : std::stol(v, &used);
-        if (n < 1 || n > 4096 || used != v.size())
-          throw std::invalid_argument("--threads must be a whole number from 1 to 4096, not '" + v + "'");
+        const long n = whole(v);
+        if (n < 1 || n > 4096) throw std::invalid_argument("--threads must be a whole number from 1 to 4096, not '" + v + "'");
         a.threads = static_cast<unsigned>(n);
       } else if (s == "--msh") {
         const std::string v = value();
@@ -505,9 +523,10 @@ int main(int argc, char** argv) {
     usage(stderr);
     return 2;
   }
-  if (!a.plc_out.empty() && (!a.check.empty() || !a.output.empty() || !a.stats.empty() || !a.cloud.empty() || a.size > 0 || a.verify || a.quality ||
-                             a.grade > 0)) {
-    std::fprintf(stderr, "gsse-mesh: --plc-out writes the input as read and meshes nothing: it takes none of --check, -o, --stats, --cloud, --size, --verify, --quality, --grade\n");
+  if (!a.plc_out.empty() && !a.meshing.empty()) {
+    std::string given;
+    for (const auto& m : a.meshing) given += (given.empty() ? "" : ", ") + m;
+    std::fprintf(stderr, "gsse-mesh: --plc-out writes the input as read and meshes nothing: it takes no option but --threads, --no-merge and --quiet (given: %s)\n", given.c_str());
     usage(stderr);
     return 2;
   }
@@ -539,6 +558,10 @@ int main(int argc, char** argv) {
       return 0;
     }
     return std::visit([&](const auto& p) { return run(p, a); }, input);
+  } catch (const usage_error& e) {
+    std::fprintf(stderr, "gsse-mesh: %s\n", e.what());
+    usage(stderr);
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "gsse-mesh: error: %s\n", e.what());
     return 1;

@@ -212,9 +212,14 @@ else bad "--check, inner box relabelled: exit $rc, '$err'"; fi
 msg=$("$mesh" "$work/box.poly" --check "$work/m.node" -o "$work/x.vtu" 2>&1); rc=$?
 if [ $rc = 2 ] && [ ! -e "$work/x.vtu" ]; then ok "--check with -o: exit 2"; else bad "--check with -o: exit $rc"; fi
 
-# numbers: the whole value must be one, the option named (stod took "0.2abc" as 0.2, "abc" failed
-# as "stod", and --max-steiner -1 wrapped round to a huge limit)
-for bad_arg in "--size 0.2abc:--size: '0.2abc' is not a number" "--grade abc:--grade: 'abc' is not a number" \
+# numbers: the whole value must be one, finite, the option named (stod took "0.2abc" as 0.2, "abc"
+# failed as "stod", --max-steiner -1 wrapped round to a huge limit, --size 1e999 and inf were taken
+# as infinite, --threads abc failed as "stol")
+for bad_arg in "--size 0.2abc:--size: '0.2abc' is not a finite number" "--grade abc:--grade: 'abc' is not a finite number" \
+               "--size 1e999:--size: '1e999' is not a finite number" "--size inf:--size: 'inf' is not a finite number" \
+               "--grade nan:--grade: 'nan' is not a finite number" "--threads abc:--threads: 'abc' is not a whole number" \
+               "--threads 0:--threads must be a whole number from 1 to 4096" \
+               "--quality 0.5:quality: the 3D bound is a radius-edge ratio of at least" \
                "--quality-rounds 3x:--quality-rounds: '3x' is not a whole number" "--max-steiner -1:--max-steiner must not be negative"; do
   opt=${bad_arg%%:*}; want=${bad_arg#*:}
   err=$("$mesh" "$work/box.poly" $opt -o "$work/n.vtu" 2>&1 >/dev/null); rc=$?
@@ -250,11 +255,14 @@ cp "$work/ow/bg/k.json" "$work/ow/bg/k.json.orig"
 err=$(cd "$work/ow/bg" && "$mesh" k.poly --grade 1.3 -o m.v1.node --quiet 2>&1 >/dev/null); rc=$?
 if [ $rc = 1 ] && [[ "$err" == *"-o m.v1.node would overwrite the background mesh"* ]] && cmp -s "$work/ow/bg/k.json" "$work/ow/bg/k.json.orig" && [ ! -e "$work/ow/bg/m.v1.node" ]
 then ok "-o onto the background mesh 'm.v1' (read as m.v1.node): exit 1, '$err'"; else bad "-o onto the background mesh 'm.v1': exit $rc, '$err'"; fi
-for extra in "-o x.vtu" "--stats x.json" "--check b.node" "--size 0.2" "--verify" "--quality"; do
+for extra in "-o x.vtu" "--stats x.json" "--check b.node" "--size 0.2" "--verify" "--quality" "--rules r.rules" "--fill rules" "--max-steiner 5" "--no-feature-size" "--sliver-angle 5" "--msh 2.2"; do
   err=$(cd "$work/ow" && "$mesh" b.poly --plc-out p.poly $extra 2>&1 >/dev/null); rc=$?
   if [ $rc = 2 ] && [[ "$err" == *"--plc-out writes the input as read and meshes nothing"* ]] && [ ! -e "$work/ow/p.poly" ] && [ ! -e "$work/ow/x.vtu" ] && [ ! -e "$work/ow/x.json" ]
   then ok "--plc-out with $extra: exit 2"; else bad "--plc-out with $extra: exit $rc, '$err'"; fi
 done
+err=$(cd "$work/ow" && "$mesh" b.poly --plc-out p.poly --threads 2 --no-merge --quiet 2>&1 >/dev/null); rc=$?
+if [ $rc = 0 ] && [ -s "$work/ow/p.poly" ]; then ok "--plc-out with --threads, --no-merge, --quiet: exit 0"; else bad "--plc-out with --threads, --no-merge, --quiet: exit $rc, '$err'"; fi
+rm -f "$work/ow/p.poly" "$work/ow/p.json"
 printf '{"points": 8, "segments": [{"name": "outer", "number": 1, "cells": 6}]}\n' > "$work/ow/s.json"
 cp "$work/box.poly" "$work/ow/s.poly"
 err=$(cd "$work/ow" && "$mesh" s.poly --size 0.2 -o out.vtu --quiet 2>&1 >/dev/null); rc=$?

@@ -226,6 +226,8 @@ bool inside_cell(const std::vector<point<D>>& p, const cell_t<D>& c, const point
 }
 
 /// True if q lies strictly inside cell c (on none of its faces): then no other cell holds it.
+/// Never true of a cell of zero volume: its facets' signed volumes about q sum to the cell's, 0,
+/// so they cannot all be positive (the predicates are exact).
 template <std::size_t D>
 bool strictly_inside_cell(const std::vector<point<D>>& p, const cell_t<D>& c, const point<D>& q) {
   if constexpr (D == 2) {
@@ -279,13 +281,25 @@ struct coarse_model {
       for (auto v : cells[c]) boxes[c].add(b.points[v]);
     }
     tree = sizing::box_tree<D>(std::move(boxes), std::vector<double>(cells.size(), 0.0));
+    // a cell of zero volume would hold (closed) every point of its plane within its box: left out
+    // of the look-ups. The wrapper makes none (it turns only positive orientations into cells);
+    // this keeps the look-up right should one ever come
+    flat.assign(cells.size(), 0);
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      const auto& t = cells[c];
+      if constexpr (D == 2)
+        flat[c] = geometry::orient2d(b.points[t[0]], b.points[t[1]], b.points[t[2]]) == 0;
+      else
+        flat[c] = geometry::orient3d(b.points[t[0]], b.points[t[1]], b.points[t[2]], b.points[t[3]]) == 0;
+    }
   }
+  std::vector<char> flat;  // 1 for a cell of zero volume
   static constexpr std::uint32_t no_cell = std::numeric_limits<std::uint32_t>::max();
   /// The coarse cell of least index holding q, or no_cell.
   std::uint32_t cell_holding(const point<D>& q) const {
     std::uint32_t found = no_cell;
     tree.visit([&](const sizing::aabb<D>& x) { return x.contains(q); }, [&](std::uint32_t c) {
-      if (c < found && inside_cell(b.points, cells[c], q)) found = c;
+      if (c < found && !flat[c] && inside_cell(b.points, cells[c], q)) found = c;
       return true;
     });
     return found;
@@ -311,7 +325,7 @@ struct coarse_model {
   /// (points asked in a row, as a lattice's, mostly share a coarse cell; a slanted coarse cell's
   /// box holds many points, each then with many boxes to test). The same answer.
   bool in_segment(const point<D>& q, std::uint32_t& hint) const {
-    if (hint < cells.size() && inside_cell(b.points, cells[hint], q)) return true;
+    if (hint < cells.size() && !flat[hint] && inside_cell(b.points, cells[hint], q)) return true;
     const std::uint32_t c = cell_holding(q);
     if (c != no_cell) hint = c;
     return c != no_cell;

@@ -227,18 +227,7 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
   std::atomic<bool> overflow{false};
   std::atomic<std::size_t> faces_done{0};
   std::mutex progress_lock;
-  // progress: faces finished (counted as each face's work ends, however it ends), every 4096th
-  struct on_exit {
-    std::function<void()> f;
-    ~on_exit() { f(); }
-  };
   for_each(execution::par(threads), ids, [&](std::size_t k) {
-    const on_exit tick{[&] {
-      if (progress && (faces_done.fetch_add(1, std::memory_order_relaxed) + 1) % 4096 == 0) {
-        const std::lock_guard<std::mutex> hold(progress_lock);
-        progress(faces_done.load(std::memory_order_relaxed), nf);
-      }
-    }};
     const double fixed = side_value(k);
     const std::uint32_t src = k < b.face_source.size() ? b.face_source[k] : 0;
     std::vector<simplex_pts<D>> todo{face_pts(k)}, next;
@@ -290,7 +279,7 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
                         // beside it (the next-but-one facet of a tessellated curved surface)
                         const point<D> q = face_closest<D>(face_pts(g), c), w = q - c;
                         const double d2 = dot(w, w), across = dot(w, normal);
-                        if (d2 < found2 && across * across >= 0.25 * d2 * nn) found2 = d2;
+                        if (d2 < std::min(found2, best2) && across * across >= 0.25 * d2 * nn) found2 = d2;
                         return true;
                       });
           if (std::isfinite(found2)) v = std::min(v, s.feature_factor * std::max(0.0, std::sqrt(found2) - r));
@@ -304,6 +293,12 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
       }
       if (total.fetch_add(out.size() + next.size(), std::memory_order_relaxed) > max_sources) overflow = true;
       std::swap(todo, next);
+    }
+    // progress: faces finished, every 4096th (at the end of the body, not from a destructor: a
+    // callback that throws propagates like any other failure of the body)
+    if (progress && (faces_done.fetch_add(1, std::memory_order_relaxed) + 1) % 4096 == 0) {
+      const std::lock_guard<std::mutex> hold(progress_lock);
+      progress(faces_done.load(std::memory_order_relaxed), nf);
     }
   }, [&](std::size_t) { return 1.0; });
   if (overflow)
