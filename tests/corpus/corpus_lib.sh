@@ -148,8 +148,11 @@ quality_case() {  # name input bound
   local dir=$WORK/$name poly=$WORK/$name/plc.poly line verdict py=/usr/bin/python3
   [ -x $py ] || py=python3
   read_case "$name" "$input" 1 || return
-  if line=$(mesh_once "$name" "$input" "$poly" "quality=$bound" --quality "$bound"); then
-    verdict=$($py - "$dir/quality=$bound/stats.json" <<'PY'
+  # with GSSE_CORPUS_GRADE too: graded sizing from the local feature size and the bound together
+  local mode="quality=$bound" extra=()
+  [ -n "${GRADE:-}" ] && mode="quality=$bound,grade=$GRADE" && extra=(--grade "$GRADE")
+  if line=$(mesh_once "$name" "$input" "$poly" "$mode" --quality "$bound" "${extra[@]}"); then
+    verdict=$($py - "$dir/$mode/stats.json" <<'PY'
 import json, sys
 q = json.load(open(sys.argv[1]))["quality"]
 r, e = q["refinement"], q["edges"]
