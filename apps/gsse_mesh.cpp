@@ -67,7 +67,7 @@ void usage(std::FILE* to) {
       "           F > 0 turns on Shewchuk's rule); counted and located in the summary (default 1;\n"
       "           0: off). 3D also excepts, apart, bad elements whose circumradius is below 1/64\n"
       "           of the starting boundary's local spacing (the spacing floor: the rounds end)\n"
-      "  --quality-rounds N  with --quality: stop after N rounds (default 100 in 3D, 250 in 2D); the\n"
+      "  --quality-rounds N  with --quality: stop after N rounds (default 250); the\n"
       "           elements left above the bound are reported\n"
       "  --cloud  extra interior points (.node); points outside every segment are dropped\n"
       "  --verify check the mesh against the input (valid, conforming, labelled, Delaunay); if it\n"

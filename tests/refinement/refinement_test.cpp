@@ -769,6 +769,21 @@ BOOST_AUTO_TEST_CASE(bench_structures_refined) {
     BOOST_TEST(q.max_ratio <= 1.2 * (1 + 1e-9));
     BOOST_TEST(q.below5 + q.above170 == 0u);
   }
+  {
+    // the FinFET at 1.2 with the default round cap: a refinement wave runs down its gate oxide
+    // (0.01 thick) one element a round, from the top (z 0.3, round 30) to the box oxide (z 0,
+    // round 90); converged in 118 rounds, past the cap of 100 until 2026-11-29
+    const auto p = std::get<plc<3>>(io::read_plc(gsse::test::bench_structure(*shared, "finfet", 3)));
+    pl::report r;
+    auto o = quality_options(1.2, 2, 0.0276);
+    o.graded = false;
+    const auto d = pl::mesh(p, {}, o, r);
+    BOOST_TEST(r.problems.empty());
+    BOOST_TEST(r.refinement.converged, "FinFET at 1.2: " << r.refinement.rounds << " rounds, " << r.refinement.bad_left << " left");
+    const auto q = pl::measure(d);
+    BOOST_TEST(q.max_ratio <= 1.2 * (1 + 1e-9));
+    BOOST_TEST(q.below5 + q.above170 == 0u);
+  }
   // the trench (a liner of 0.01 under a size of 0.044) at 1.2: axis-aligned within 100 rounds
   // (66), rotated within 60 (38). While the nearest encroached face was split below
   // 1.3 too, the walls were split again and again: not converged after 250 rounds axis-aligned,

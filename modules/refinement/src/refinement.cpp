@@ -1669,7 +1669,7 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       st.converged = true;
       break;
     }
-    if (st.rounds >= (o.max_rounds ? o.max_rounds : D == 2 ? 250 : 100) || b.points.size() >= o.max_points || (pl.add.empty() && pl.split.empty())) break;
+    if (st.rounds >= (o.max_rounds ? o.max_rounds : 250) || b.points.size() >= o.max_points || (pl.add.empty() && pl.split.empty())) break;
     ++st.rounds;
     st.inserted += pl.add.size();
     st.split_requests += pl.split.size();
