@@ -753,55 +753,36 @@ BOOST_AUTO_TEST_CASE(bench_structures_refined) {
     const auto q = pl::measure(d);
     BOOST_TEST(q.below5 + q.above170 == 0u, "finfet graded: " << q.below5 << " below 5 degrees, min " << q.min_angle);
   }
-  {
-    // down to 1.2 where the input angles allow (right angles only): the MOSFET within 60 rounds
-    // (22; it took 144 rounds and 2.4 times the points while every encroaching element had every
-    // face it encroaches split, docs/benchmarks.md, twenty-second part)
-    const auto p = std::get<plc<3>>(io::read_plc(gsse::test::bench_structure(*shared, "mosfet", 3)));
+  // down to 1.2 where the input angles allow (right angles only), with a uniform size: converged
+  // within `rounds` (0: the default cap), no element above the bound, no sliver
+  auto at_1_2 = [&](const char* name, double size, std::size_t rounds, bool rotate) {
+    const auto p = std::get<plc<3>>(io::read_plc(gsse::test::bench_structure(*shared, name, 3, 0, rotate)));
     pl::report r;
-    auto o = quality_options(1.2, 2, 0.0304);
+    auto o = quality_options(1.2, 2, size);
     o.graded = false;
-    o.quality_rounds = 60;
+    o.quality_rounds = rounds;
     const auto d = pl::mesh(p, {}, o, r);
     BOOST_TEST(r.problems.empty());
-    BOOST_TEST(r.refinement.converged, "MOSFET at 1.2: " << r.refinement.rounds << " rounds, " << r.refinement.bad_left << " left");
-    const auto q = pl::measure(d);
-    BOOST_TEST(q.max_ratio <= 1.2 * (1 + 1e-9));
-    BOOST_TEST(q.below5 + q.above170 == 0u);
-  }
-  {
-    // the FinFET at 1.2 with the default round cap: a refinement wave runs down its gate oxide
-    // (0.01 thick) one element a round, from the top (z 0.3, round 30) to the box oxide (z 0,
-    // round 90); converged in 118 rounds, past the cap of 100 until 2026-11-29
-    const auto p = std::get<plc<3>>(io::read_plc(gsse::test::bench_structure(*shared, "finfet", 3)));
-    pl::report r;
-    auto o = quality_options(1.2, 2, 0.0276);
-    o.graded = false;
-    const auto d = pl::mesh(p, {}, o, r);
-    BOOST_TEST(r.problems.empty());
-    BOOST_TEST(r.refinement.converged, "FinFET at 1.2: " << r.refinement.rounds << " rounds, " << r.refinement.bad_left << " left");
-    const auto q = pl::measure(d);
-    BOOST_TEST(q.max_ratio <= 1.2 * (1 + 1e-9));
-    BOOST_TEST(q.below5 + q.above170 == 0u);
-  }
-  // the trench (a liner of 0.01 under a size of 0.044) at 1.2: axis-aligned within 100 rounds
-  // (66), rotated within 60 (38). While the nearest encroached face was split below
-  // 1.3 too, the walls were split again and again: not converged after 250 rounds axis-aligned,
-  // 166 rounds rotated (docs/benchmarks.md, twenty-third part)
-  for (bool rotate : {false, true}) {
-    const auto p = std::get<plc<3>>(io::read_plc(gsse::test::bench_structure(*shared, "trench", 3, 0, rotate)));
-    pl::report r;
-    auto o = quality_options(1.2, 2, 0.0442);
-    o.graded = false;
-    o.quality_rounds = rotate ? 60 : 100;
-    const auto d = pl::mesh(p, {}, o, r);
-    BOOST_TEST(r.problems.empty());
-    BOOST_TEST(r.refinement.converged, (rotate ? "rotated " : "") << "trench at 1.2: " << r.refinement.rounds << " rounds, "
+    BOOST_TEST(r.refinement.converged, (rotate ? "rotated " : "") << name << " at 1.2: " << r.refinement.rounds << " rounds, "
                                                                  << r.refinement.bad_left << " left");
     const auto q = pl::measure(d);
     BOOST_TEST(q.max_ratio <= 1.2 * (1 + 1e-9));
     BOOST_TEST(q.below5 + q.above170 == 0u);
-  }
+  };
+  // the MOSFET within 60 rounds (22; it took 144 rounds and 2.4 times the points while every
+  // encroaching element had every face it encroaches split, docs/benchmarks.md, twenty-second part)
+  at_1_2("mosfet", 0.0304, 60, false);
+  // the FinFET with the default round cap: a refinement wave runs down its gate oxide (0.01
+  // thick) one element a round, from the top (z 0.3, round 30) to the box oxide (z 0, round 90);
+  // converged in 118 rounds, past the cap of 100 until 2026-11-29 (docs/benchmarks.md, thirtieth
+  // part)
+  at_1_2("finfet", 0.0276, 0, false);
+  // the trench (a liner of 0.01 under a size of 0.044): axis-aligned within 100 rounds (66),
+  // rotated within 60 (38). While the nearest encroached face was split below 1.3 too, the walls
+  // were split again and again: not converged after 250 rounds axis-aligned, 166 rounds rotated
+  // (docs/benchmarks.md, twenty-third part)
+  at_1_2("trench", 0.0442, 100, false);
+  at_1_2("trench", 0.0442, 60, true);
 }
 
 // A thin layer (0.02 under a size of 0.1) between two slanted walls: the walls' points are each
