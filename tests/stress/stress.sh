@@ -8,7 +8,8 @@
 # error: FILE..." line naming the input, no output file). A timeout, a crash, a verify failure,
 # a valid case rejected or a bad one meshed fails the test.
 # usage: stress.sh GSSE_MESH SOURCE_DIR [FIRST_SEED [COUNT]]
-#   GSSE_STRESS_TIMEOUT seconds per case (default 60); GSSE_CORPUS_WORK keeps the files
+#   GSSE_STRESS_TIMEOUT seconds per case (default 60); GSSE_CORPUS_WORK keeps the files;
+#   GSSE_STRESS_ARGS options added to every run (e.g. "--quality 1.414", "--grade 1.3")
 set -uo pipefail
 MESH=$1; src=$2; first=${3:-0}; count=${4:-100}
 here=$src/tests/stress
@@ -25,7 +26,8 @@ for ((s = first; s < first + count; ++s)); do
   out=$WORK/case$s.out
   rm -f "$out".node "$out".ele
   t=$(date +%s.%N)
-  timeout -k 5 "$TIMEOUT" "$MESH" "$input" --verify --quiet -o "$out.node" > "$WORK/case$s.stdout" 2> "$WORK/case$s.stderr"
+  # shellcheck disable=SC2086
+  timeout -k 5 "$TIMEOUT" "$MESH" "$input" ${GSSE_STRESS_ARGS:-} --verify --quiet -o "$out.node" > "$WORK/case$s.stdout" 2> "$WORK/case$s.stderr"
   rc=$?
   wall=$(seconds_since "$t")
   msg=$(grep -m1 'error\|verify:' "$WORK/case$s.stderr" | cut -c1-200)
@@ -57,5 +59,5 @@ for ((s = first; s < first + count; ++s)); do
   [[ "$verdict" == FAIL* ]] && bad=$((bad + 1))
   printf 'seed %-4s %-10s %6s s  %s\n' "$s" "${input##*.}" "$wall" "$verdict"
 done
-echo "stress: $count cases from seed $first in $(seconds_since "$t0") s: $meshed meshed and verified, $rejected rejected, $bad failed"
+echo "stress${GSSE_STRESS_ARGS:+ $GSSE_STRESS_ARGS}: $count cases from seed $first in $(seconds_since "$t0") s: $meshed meshed and verified, $rejected rejected, $bad failed"
 [ $bad = 0 ]

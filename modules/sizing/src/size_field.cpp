@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <atomic>
-#include <mutex>
 #include <cmath>
+#include <iomanip>
+#include <limits>
+#include <mutex>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -219,8 +222,16 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
 
   // per face: pieces subdivided until no larger (circumradius about the centroid) than their
   // value; pieces whose value does not beat the global size are dropped
-  constexpr std::size_t max_sources = 20'000'000;
+  const std::size_t max_sources = s.max_pieces;
   std::vector<std::vector<std::pair<simplex_pts<D>, double>>> pieces(nf);
+  // per face, the closest face across any of its pieces found (squared distance, where, which):
+  // should the pieces overflow, the message names the closest features
+  struct closest_across {
+    double d2 = unbounded;
+    point<D> at{};
+    std::uint32_t face = 0;
+  };
+  std::vector<closest_across> closest(nf);
   std::vector<std::size_t> ids(nf);
   for (std::size_t k = 0; k < nf; ++k) ids[k] = k;
   std::atomic<std::size_t> total{0};
@@ -231,10 +242,19 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
     const double fixed = side_value(k);
     const std::uint32_t src = k < b.face_source.size() ? b.face_source[k] : 0;
     std::vector<simplex_pts<D>> todo{face_pts(k)}, next;
+    // per piece, the face across its parent found nearest (none for the face itself): a child's
+    // nearest face across is mostly its parent's, and its distance, taken first, bounds the search
+    // from the start (the minimum found is the same: the hint is one of the faces the search
+    // would qualify, at the same distance)
+    constexpr std::uint32_t no_hint = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> todo_hint{no_hint}, next_hint;
     auto& out = pieces[k];
     while (!todo.empty() && !overflow.load(std::memory_order_relaxed)) {
       next.clear();
-      for (const auto& piece : todo) {
+      next_hint.clear();
+      for (std::size_t t = 0; t < todo.size(); ++t) {
+        const auto& piece = todo[t];
+        std::uint32_t found_face = no_hint;
         const point<D> c = centroid<D>(piece);
         point<D> normal;
         if constexpr (D == 2)
@@ -251,6 +271,15 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
           const double cap = std::min(v, f.global_);
           double best2 = std::isfinite(cap) ? std::pow(cap / s.feature_factor + r, 2) : unbounded;
           double found2 = unbounded;
+          // a face across qualifies if its nearest point lies at least 30 degrees out of this
+          // piece's plane (a layer's other side, a gap's other wall), not beside it (the
+          // next-but-one facet of a tessellated curved surface)
+          auto consider = [&](std::uint32_t g) {
+            const point<D> q = face_closest<D>(face_pts(g), c), w = q - c;
+            const double d2 = dot(w, w), across = dot(w, normal);
+            if (d2 < std::min(found2, best2) && across * across >= 0.25 * d2 * nn) found2 = d2, found_face = g;
+          };
+          if (todo_hint[t] != no_hint) consider(todo_hint[t]);  // the parent's: not incident either
           // a box whose every point x has |(x - c).n| below 0.49 |x - c| holds no nearest point
           // 30 degrees or more out of this piece's plane (the test below asks 0.5): skipped
           // whole. Without it a curved surface tessellated finely, with nothing across it near
@@ -273,26 +302,31 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
           ftree.visit_near(c, [&](const aabb<D>& bx) { return bx.distance2(c) < std::min(best2, found2) && !sideways(bx); },
                       [&](std::uint32_t g) {
                         const std::uint32_t gs = g < b.face_source.size() ? b.face_source[g] : 0;
-                        if (gs < nsrc && src < nsrc && incident(src, gs)) return true;
-                        // only a face across: its nearest point at least 30 degrees out of
-                        // this face's plane (a layer's other side, a gap's other wall), not one
-                        // beside it (the next-but-one facet of a tessellated curved surface)
-                        const point<D> q = face_closest<D>(face_pts(g), c), w = q - c;
-                        const double d2 = dot(w, w), across = dot(w, normal);
-                        if (d2 < std::min(found2, best2) && across * across >= 0.25 * d2 * nn) found2 = d2;
+                        if (!(gs < nsrc && src < nsrc && incident(src, gs))) consider(g);
                         return true;
                       });
           if (std::isfinite(found2)) v = std::min(v, s.feature_factor * std::max(0.0, std::sqrt(found2) - r));
+          if (found2 < closest[k].d2) closest[k] = {found2, c, found_face};
         }
         if (!(v < f.global_)) continue;  // does not bind anywhere the global size does not
         if (r > std::max(v, floor)) {
           split<D>(piece, next);
+          next_hint.resize(next.size(), found_face);
+          // over the budget already (the other faces' levels done, and this face's so far): stop
+          // now, not after the level (a 5e-6 layer's face had grown a level of 16 million pieces
+          // before the check, 6 GB). Only when the sum at the end would be over it too
+          if (next.size() % 65536 == 0 && total.load(std::memory_order_relaxed) + out.size() + next.size() > max_sources) {
+            overflow = true;
+            break;
+          }
           continue;
         }
         out.push_back({piece, std::max(v, floor)});
       }
-      if (total.fetch_add(out.size() + next.size(), std::memory_order_relaxed) > max_sources) overflow = true;
+      const std::size_t level = out.size() + next.size();
+      if (total.fetch_add(level, std::memory_order_relaxed) + level > max_sources) overflow = true;
       std::swap(todo, next);
+      std::swap(todo_hint, next_hint);
     }
     // progress: faces finished, every 4096th (at the end of the body, not from a destructor: a
     // callback that throws propagates like any other failure of the body)
@@ -301,9 +335,28 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
       progress(faces_done.load(std::memory_order_relaxed), nf);
     }
   }, [&](std::size_t) { return 1.0; });
-  if (overflow)
-    throw std::runtime_error(b.source + ": the local feature size needs more than " + std::to_string(max_sources) +
-                             " boundary pieces (features far below the model's size)");
+  if (overflow) {
+    // the closest features across found (the faces' order breaks ties: the same for any threads,
+    // as far as the faces got)
+    std::size_t at = 0;
+    for (std::size_t k = 1; k < nf; ++k)
+      if (closest[k].d2 < closest[at].d2) at = k;
+    std::ostringstream m;
+    m << b.source << ": the local feature size needs more than " << max_sources
+      << " boundary pieces: features far below the model's size";
+    if (nf > 0 && std::isfinite(closest[at].d2)) {
+      const double gap = std::sqrt(closest[at].d2);
+      auto source_of = [&](std::size_t face) {
+        const std::uint32_t src = face < b.face_source.size() ? b.face_source[face] : 0;
+        return std::string(D == 2 ? "segment " : "facet ") + std::to_string(src + 1);
+      };
+      m << ", the closest " << std::setprecision(3) << gap << " apart (" << gap / extent << " of the model's extent) at (";
+      for (std::size_t j = 0; j < D; ++j) m << (j ? ", " : "") << std::setprecision(6) << closest[at].at[j];
+      m << "), " << source_of(at) << " and " << source_of(closest[at].face);
+    }
+    m << ": thicken or remove them, or leave the local feature size out (--no-feature-size) and give sizes";
+    throw std::runtime_error(m.str());
+  }
   std::vector<aabb<D>> boxes;
   std::vector<double> values;
   for (const auto& v : pieces)

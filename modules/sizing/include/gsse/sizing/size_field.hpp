@@ -66,6 +66,9 @@ struct spec {
     std::string source;
   };
   std::shared_ptr<const background_mesh> background;  // sidecar "background" (.node/.ele + .mtr)
+  // the boundary pieces the field may cut the faces into (counted over every level) before `build`
+  // gives up: features far below the model's size (a 1e-8 layer) would need far more
+  std::size_t max_pieces = 20'000'000;
 };
 
 /// The maximum size of a .poly region's maximum volume (3D) or area (2D): the edge of the regular
@@ -130,7 +133,7 @@ struct boundary_view {
 
 /// Builds the field from the boundary. Parallel over faces; the same field for any thread count.
 /// Throws std::runtime_error when the features are so small that the field would need more than
-/// 2e7 pieces. `progress` (optional) is called now and then with the faces done and their total
+/// `s.max_pieces` pieces (2e7), naming the closest features found. `progress` (optional) is called now and then with the faces done and their total
 /// (from any worker thread, one call at a time).
 template <std::size_t D>
 size_field<D> build(const boundary_view<D>& b, const spec<D>& s, unsigned threads = 1,
