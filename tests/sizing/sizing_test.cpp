@@ -454,6 +454,38 @@ BOOST_AUTO_TEST_CASE(features_beyond_the_budget_are_named) {
   BOOST_TEST(f.minimum() <= 0.45e-3);
 }
 
+// --quality on a layer 1e-5 thick in a 0.2 model: no mesh could meet the bound there (the layer's
+// walls would need points 1e-5 apart), and the refinement ran on, each round slower: a layer
+// 5e-6 thick in a unit model had 857,737 elements above the bound after 30 rounds and 40 s, and
+// TetGen -pq1.414 ran past 60 s too. When the bad elements grow 10 rounds in a row the pipeline
+// asks the local feature size whether the features fit its budget; here they do not, and the run
+// ends with an error naming them. A 0.01 layer converges (the budget is not reached).
+BOOST_AUTO_TEST_CASE(quality_on_features_beyond_the_budget_ends_with_an_error) {
+  for (const bool rotated : {false, true}) {
+    pl::options o;
+    o.quality = true;
+    o.quality_bound = 1.414;
+    o.threads = 2;
+    o.sizing3.max_pieces = 200'000;
+    o.quality_rounds = 14;  // without the check: 14 rounds and no error (the test fails, it does not hang)
+    pl::report r;
+    try {
+      pl::mesh(stack(0.2, {0, 0.1, 0.1 + 1e-5, 0.2}, {}, rotated), {}, o, r);
+      BOOST_TEST(false, (rotated ? "turned: " : "") << "no error; " << r.refinement.rounds << " rounds");
+    } catch (const std::runtime_error& e) {
+      const std::string m = e.what();
+      BOOST_TEST(m.find("--quality: the elements above the bound grew to") != std::string::npos, m);
+      BOOST_TEST(m.find("apart") != std::string::npos, m);
+      BOOST_TEST(m.find("more than 200000 boundary pieces") != std::string::npos, m);
+    }
+    o.verify = true;
+    o.quality_rounds = 0;
+    pl::mesh(stack(0.2, {0, 0.1, 0.11, 0.2}, {}, rotated), {}, o, r);
+    BOOST_TEST(r.problems.empty());
+    BOOST_TEST(r.refinement.converged, (rotated ? "turned: " : "") << "0.01 layer: " << r.refinement.rounds << " rounds");
+  }
+}
+
 // The graded lattice's points lie on the finest level's planes exactly: along each axis, two
 // coordinate values are equal or at least a finest spacing apart. (Cube centres computed as
 // corner + a/2 sat an ulp off the plane of the next level's corners beside them; squares of four

@@ -9,7 +9,10 @@
 # a valid case rejected or a bad one meshed fails the test.
 # usage: stress.sh GSSE_MESH SOURCE_DIR [FIRST_SEED [COUNT]]
 #   GSSE_STRESS_TIMEOUT seconds per case (default 60); GSSE_CORPUS_WORK keeps the files;
-#   GSSE_STRESS_ARGS options added to every run (e.g. "--quality 1.414", "--grade 1.3")
+#   GSSE_STRESS_ARGS options added to every run (e.g. "--quality 1.414", "--grade 1.3"). With
+#   --quality or --grade a thin-layer case (seed % 5 == 3: layers 1e-8..1e-5 of the model) must
+#   be rejected instead, saying its features are far below the model's size: no mesh could meet
+#   the bound or the feature size there (docs/benchmarks.md, thirty-first part)
 set -uo pipefail
 MESH=$1; src=$2; first=${3:-0}; count=${4:-100}
 here=$src/tests/stress
@@ -54,8 +57,14 @@ for ((s = first; s < first + count; ++s)); do
     3) verdict="FAIL: VERIFY: $msg" ;;
     *) verdict="FAIL: CRASH (exit $rc): $(tail -1 "$WORK/case$s.stderr" | cut -c1-160)" ;;
   esac
+  beyond=0  # a thin layer asked for a quality bound or a feature size: to be rejected
+  if [ $((s % 5)) = 3 ] && [[ " ${GSSE_STRESS_ARGS:-} " == *" --quality "* || " ${GSSE_STRESS_ARGS:-} " == *" --grade "* ]]; then beyond=1; fi
   if [[ "$input" == *_bad.poly && $rc = 0 ]]; then verdict="FAIL: bad input (overlapping or piercing facets) was meshed"; fi
-  if [[ "$input" != *_bad.poly && $rc = 1 ]]; then verdict="FAIL: valid input rejected: ${msg#gsse-mesh: error: }"; fi
+  if [ $beyond = 1 ] && [ $rc = 0 ]; then verdict="FAIL: a layer far below the model's size was meshed with $GSSE_STRESS_ARGS"; meshed=$((meshed - 1)); fi
+  if [ $beyond = 1 ] && [ $rc = 1 ] && [[ "$verdict" == REJECTED* ]] && ! grep -q "features far below the model's size" "$WORK/case$s.stderr"; then
+    verdict="FAIL: rejected without naming features far below the model's size: ${msg#gsse-mesh: error: }"
+  fi
+  if [[ "$input" != *_bad.poly && $beyond = 0 && $rc = 1 ]]; then verdict="FAIL: valid input rejected: ${msg#gsse-mesh: error: }"; fi
   [[ "$verdict" == FAIL* ]] && bad=$((bad + 1))
   printf 'seed %-4s %-10s %6s s  %s\n' "$s" "${input##*.}" "$wall" "$verdict"
 done

@@ -784,6 +784,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   const bool refined_interior = D == 2 && o.quality && !creating;
   std::vector<point<D>> volume;
   sizing::size_field<D> field;
+  bool feature_size_fits = false;  // the local feature size was built within its budget
   // a region's maximum volume (TetGen's region attribute) is a size constraint of its own
   const bool volumes = std::any_of(p.regions.begin(), p.regions.end(), [](const auto& x) { return x.max_volume > 0; });
   if ((o.graded || volumes) && !creating) {
@@ -807,6 +808,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
         o.progress("sizing: local feature size, " + std::to_string(done) + " of " + std::to_string(all) + " boundary faces");
       };
     field = sizing::build(view, sp, o.threads, tick);
+    feature_size_fits = sp.feature_size;
     if (o.progress) o.progress("sizing: placing points");
     r.uniform_size = field.uniform();
     r.min_size = field.minimum();
@@ -860,6 +862,28 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     ro.max_rounds = o.quality_rounds;
     ro.threads = o.threads;
     ro.progress = o.progress;
+    if (!feature_size_fits)
+      // the bad elements growing round after round: can the input's features be met at all? The
+      // local feature size within its budget says so (a layer 5e-6 thick in a unit model needs
+      // some 1e10 pieces, and the refinement as many points: it ran on for hours, each round
+      // slower). Asked once, from the boundary as it is then; the field itself is dropped
+      ro.on_growth = [&](std::size_t bad, std::size_t rounds) {
+        if (o.progress) o.progress("quality: the bad elements keep growing; checking the input's feature sizes");
+        sizing::spec<D> features;  // the local feature size alone, with the budget asked for
+        if constexpr (D == 2)
+          features.max_pieces = o.sizing2.max_pieces;
+        else
+          features.max_pieces = o.sizing3.max_pieces;
+        try {
+          sizing::build<D>({b.points, b.plc_points, b.faces, b.face_source, {}, p.source}, features, o.threads);
+        } catch (const sizing::too_fine& e) {
+          throw std::runtime_error(p.source + ": --quality: the elements above the bound grew to " + std::to_string(bad) +
+                                   " in " + std::to_string(rounds) + " rounds, and the input has features far below the model's size" +
+                                   (e.closest.empty() ? "" : ", " + e.closest) + " (their local feature size alone needs more than " +
+                                   std::to_string(features.max_pieces) +
+                                   " boundary pieces): the bound cannot be met there; thicken or remove them, or mesh without --quality");
+        }
+      };
     if (refined_interior) {
       if constexpr (D == 2) {
         if (!field.uniform())

@@ -1645,6 +1645,8 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
   // adds, not the size of the boundary (conformer::session)
   conformer::session<D> boundary_rounds(p, co);
   const spacing_floor<D> floor(b, D == 3 ? spacing_floor<D>::default_ratio : 0.0);
+  std::size_t last_bad = 0, rising = 0;  // the bad elements' count a round before; rounds it rose in a row
+  bool growth_asked = false;
   for (;;) {
     std::function<double(const point<D>&)> size;
     if constexpr (D == 2)
@@ -1670,6 +1672,14 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       break;
     }
     if (st.rounds >= (o.max_rounds ? o.max_rounds : 250) || b.points.size() >= o.max_points || (pl.add.empty() && pl.split.empty())) break;
+    // the bad elements growing round after round: asked once whether the input can be met at all
+    // (outside the round's try: its error ends the refinement)
+    rising = st.rounds > 0 && pl.bad > last_bad ? rising + 1 : 0;
+    last_bad = pl.bad;
+    if (o.on_growth && !growth_asked && rising >= o.growth_rounds) {
+      growth_asked = true;
+      o.on_growth(pl.bad, st.rounds);
+    }
     ++st.rounds;
     st.inserted += pl.add.size();
     st.split_requests += pl.split.size();

@@ -341,21 +341,22 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
     std::size_t at = 0;
     for (std::size_t k = 1; k < nf; ++k)
       if (closest[k].d2 < closest[at].d2) at = k;
-    std::ostringstream m;
-    m << b.source << ": the local feature size needs more than " << max_sources
-      << " boundary pieces: features far below the model's size";
+    std::ostringstream where;
     if (nf > 0 && std::isfinite(closest[at].d2)) {
       const double gap = std::sqrt(closest[at].d2);
       auto source_of = [&](std::size_t face) {
         const std::uint32_t src = face < b.face_source.size() ? b.face_source[face] : 0;
         return std::string(D == 2 ? "segment " : "facet ") + std::to_string(src + 1);
       };
-      m << ", the closest " << std::setprecision(3) << gap << " apart (" << gap / extent << " of the model's extent) at (";
-      for (std::size_t j = 0; j < D; ++j) m << (j ? ", " : "") << std::setprecision(6) << closest[at].at[j];
-      m << "), " << source_of(at) << " and " << source_of(closest[at].face);
+      where << "the closest " << std::setprecision(3) << gap << " apart (" << gap / extent << " of the model's extent) at (";
+      for (std::size_t j = 0; j < D; ++j) where << (j ? ", " : "") << std::setprecision(6) << closest[at].at[j];
+      where << "), " << source_of(at) << " and " << source_of(closest[at].face);
     }
-    m << ": thicken or remove them, or leave the local feature size out (--no-feature-size) and give sizes";
-    throw std::runtime_error(m.str());
+    const std::string closest_found = where.str();
+    throw too_fine(b.source + ": the local feature size needs more than " + std::to_string(max_sources) +
+                       " boundary pieces: features far below the model's size" + (closest_found.empty() ? "" : ", " + closest_found) +
+                       ": thicken or remove them, or leave the local feature size out (--no-feature-size) and give sizes",
+                   closest_found);
   }
   std::vector<aabb<D>> boxes;
   std::vector<double> values;

@@ -27,7 +27,9 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <span>
@@ -131,8 +133,18 @@ struct boundary_view {
   std::string source;  // the input file, for messages
 };
 
+/// What `build` throws when the features are so far below the model's size that the field would
+/// need more than `spec::max_pieces` pieces; `closest` names the closest features found ("the
+/// closest 5.33e-06 apart (3.08e-06 of the model's extent) at (x, y, z), facet 5 and facet 34"),
+/// or is empty.
+struct too_fine : std::runtime_error {
+  too_fine(const std::string& message, std::string closest_features)
+      : std::runtime_error(message), closest(std::move(closest_features)) {}
+  std::string closest;
+};
+
 /// Builds the field from the boundary. Parallel over faces; the same field for any thread count.
-/// Throws std::runtime_error when the features are so small that the field would need more than
+/// Throws too_fine when the features are so small that the field would need more than
 /// `s.max_pieces` pieces (2e7), naming the closest features found. `progress` (optional) is called now and then with the faces done and their total
 /// (from any worker thread, one call at a time).
 template <std::size_t D>
