@@ -85,8 +85,8 @@ void usage(std::FILE* to) {
       "           number as element attribute, any mesher's) against INPUT, as --verify does, and\n"
       "           exit: status 0 if it passes, 3 if not (the problems on stderr)\n"
       "  --plc-out write the input as read (with the region points placed in Gmsh volumes) as a\n"
-      "           TetGen/Triangle .poly and exit without meshing (none of -o, --stats, --check, --cloud,\n"
-      "           --size, --verify, --quality, --grade with it)\n",
+      "           TetGen/Triangle .poly and exit without meshing (with no option but --threads,\n"
+      "           --no-merge and --quiet)\n",
       to);
 }
 

@@ -151,7 +151,7 @@ quality_case() {  # name input bound
   # with GSSE_CORPUS_GRADE too: graded sizing from the local feature size and the bound together
   local mode="quality=$bound" extra=()
   [ -n "${GRADE:-}" ] && mode="quality=$bound,grade=$GRADE" && extra=(--grade "$GRADE")
-  if line=$(mesh_once "$name" "$input" "$poly" "$mode" --quality "$bound" "${extra[@]}"); then
+  if line=$(mesh_once "$name" "$input" "$poly" "$mode" --quality "$bound" ${extra[@]+"${extra[@]}"}); then
     verdict=$($py - "$dir/$mode/stats.json" <<'PY'
 import json, sys
 q = json.load(open(sys.argv[1]))["quality"]

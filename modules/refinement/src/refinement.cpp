@@ -1,6 +1,7 @@
 #include "gsse/refinement/refinement.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -1624,6 +1625,7 @@ void spatial_order(cells_by_region<D>& cells, const std::vector<point<D>>& p, un
 template <std::size_t D>
 domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labelling& l, cells_by_region<D> cells,
                  const conformer::options& co, const options& o, const meshers<D>& mesh, stats& st) {
+  st = stats{};  // a report used before starts over (its rounds are the cap's count)
   const double bound = ratio_bound(D, o.bound);
   // per cell: 1 until the plan has found it good (a cell's shape and size never change, so a
   // good one that survives a round is not measured again)
@@ -1645,7 +1647,10 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
   // adds, not the size of the boundary (conformer::session)
   conformer::session<D> boundary_rounds(p, co);
   const spacing_floor<D> floor(b, D == 3 ? spacing_floor<D>::default_ratio : 0.0);
-  std::size_t last_bad = 0, rising = 0;  // the bad elements' count a round before; rounds it rose in a row
+  // the bad elements' count a round before, and whether it rose in each of the last rounds (bit
+  // 0 the latest): a dip or a flat round among the rises does not start the count over
+  std::size_t last_bad = 0;
+  std::uint32_t rises = 0;
   bool growth_asked = false;
   for (;;) {
     std::function<double(const point<D>&)> size;
@@ -1674,9 +1679,11 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     if (st.rounds >= (o.max_rounds ? o.max_rounds : 250) || b.points.size() >= o.max_points || (pl.add.empty() && pl.split.empty())) break;
     // the bad elements growing round after round: asked once whether the input can be met at all
     // (outside the round's try: its error ends the refinement)
-    rising = st.rounds > 0 && pl.bad > last_bad ? rising + 1 : 0;
+    rises = (rises << 1) | (st.rounds > 0 && pl.bad > last_bad ? 1u : 0u);
     last_bad = pl.bad;
-    if (o.on_growth && !growth_asked && rising >= o.growth_rounds) {
+    const auto window = std::min<std::size_t>(o.growth_rounds + 2, 32);
+    const std::uint32_t recent = window >= 32 ? rises : rises & ((std::uint32_t{1} << window) - 1);
+    if (o.on_growth && !growth_asked && o.growth_rounds > 0 && static_cast<std::size_t>(std::popcount(recent)) >= o.growth_rounds) {
       growth_asked = true;
       o.on_growth(pl.bad, st.rounds);
     }

@@ -252,6 +252,7 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
     while (!todo.empty() && !overflow.load(std::memory_order_relaxed)) {
       next.clear();
       next_hint.clear();
+      const std::size_t kept_before = out.size();  // the pieces kept at earlier levels, counted then
       for (std::size_t t = 0; t < todo.size(); ++t) {
         const auto& piece = todo[t];
         std::uint32_t found_face = no_hint;
@@ -315,7 +316,7 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
           // over the budget already (the other faces' levels done, and this face's so far): stop
           // now, not after the level (a 5e-6 layer's face had grown a level of 16 million pieces
           // before the check, 6 GB). Only when the sum at the end would be over it too
-          if (next.size() % 65536 == 0 && total.load(std::memory_order_relaxed) + out.size() + next.size() > max_sources) {
+          if (next.size() % 65536 == 0 && total.load(std::memory_order_relaxed) + out.size() - kept_before + next.size() > max_sources) {
             overflow = true;
             break;
           }
@@ -323,7 +324,8 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
         }
         out.push_back({piece, std::max(v, floor)});
       }
-      const std::size_t level = out.size() + next.size();
+      // this level's pieces: those kept at it and those cut for the next (each piece counted once)
+      const std::size_t level = out.size() - kept_before + next.size();
       if (total.fetch_add(level, std::memory_order_relaxed) + level > max_sources) overflow = true;
       std::swap(todo, next);
       std::swap(todo_hint, next_hint);
@@ -336,8 +338,8 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
     }
   }, [&](std::size_t) { return 1.0; });
   if (overflow) {
-    // the closest features across found (the faces' order breaks ties: the same for any threads,
-    // as far as the faces got)
+    // the closest features across found by the faces that got that far (the faces' order breaks
+    // ties): which they are may differ between thread counts; that the budget is exceeded does not
     std::size_t at = 0;
     for (std::size_t k = 1; k < nf; ++k)
       if (closest[k].d2 < closest[at].d2) at = k;
@@ -353,6 +355,10 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
       where << "), " << source_of(at) << " and " << source_of(closest[at].face);
     }
     const std::string closest_found = where.str();
+    if (!s.feature_size)  // the sizes asked for (sidecar, region volumes, --size) are the cause
+      throw too_fine(b.source + ": the size field needs more than " + std::to_string(max_sources) +
+                         " boundary pieces: the sizes asked for are far below the model's size",
+                     closest_found);
     throw too_fine(b.source + ": the local feature size needs more than " + std::to_string(max_sources) +
                        " boundary pieces: features far below the model's size" + (closest_found.empty() ? "" : ", " + closest_found) +
                        ": thicken or remove them, or leave the local feature size out (--no-feature-size) and give sizes",

@@ -136,7 +136,8 @@ struct boundary_view {
 /// What `build` throws when the features are so far below the model's size that the field would
 /// need more than `spec::max_pieces` pieces; `closest` names the closest features found ("the
 /// closest 5.33e-06 apart (3.08e-06 of the model's extent) at (x, y, z), facet 5 and facet 34"),
-/// or is empty.
+/// or is empty. Which features: the closest the faces found as far as they got, which may differ
+/// between thread counts (whether the budget is exceeded does not).
 struct too_fine : std::runtime_error {
   too_fine(const std::string& message, std::string closest_features)
       : std::runtime_error(message), closest(std::move(closest_features)) {}
