@@ -760,6 +760,17 @@ domain<D> assemble_pieces(const std::vector<point<D>>& pts, const conformer::lab
   return d;
 }
 
+namespace {
+/// The sizing spec the options give for dimension D (sizing2 or sizing3).
+template <std::size_t D>
+const sizing::spec<D>& sizing_spec(const options& o) {
+  if constexpr (D == 2)
+    return o.sizing2;
+  else
+    return o.sizing3;
+}
+}  // namespace
+
 template <std::size_t D>
 domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const options& o, report& r) {
   using clock = std::chrono::steady_clock;
@@ -790,11 +801,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   if ((o.graded || volumes) && !creating) {
     // the size field from the unsized conformed boundary, then the points it asks for
     const coarse_model<D> m(p, co);
-    sizing::spec<D> sp;
-    if constexpr (D == 2)
-      sp = o.sizing2;
-    else
-      sp = o.sizing3;
+    sizing::spec<D> sp = sizing_spec<D>(o);
     sp.global = o.size;
     sizing::add_region_volumes(sp, p);
     std::vector<std::array<int, 2>> sides(m.b.faces.size(), {0, 0});
@@ -870,10 +877,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
       ro.on_growth = [&](std::size_t bad, std::size_t rounds) {
         if (o.progress) o.progress("quality: the bad elements keep growing; checking the input's feature sizes");
         sizing::spec<D> features;  // the local feature size alone, with the budget asked for
-        if constexpr (D == 2)
-          features.max_pieces = o.sizing2.max_pieces;
-        else
-          features.max_pieces = o.sizing3.max_pieces;
+        features.max_pieces = sizing_spec<D>(o).max_pieces;
         try {
           sizing::build<D>({b.points, b.plc_points, b.faces, b.face_source, {}, p.source}, features, o.threads);
         } catch (const sizing::too_fine& e) {

@@ -244,8 +244,9 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
     std::vector<simplex_pts<D>> todo{face_pts(k)}, next;
     // per piece, the face across its parent found nearest (none for the face itself): a child's
     // nearest face across is mostly its parent's, and its distance, taken first, bounds the search
-    // from the start (the minimum found is the same: the hint is one of the faces the search
-    // would qualify, at the same distance)
+    // from the start (the minimum found is the same up to rounding: the hint is one of the faces
+    // the search would qualify, at the same distance, but a face whose closest point rounds an ulp
+    // outside its box may be pruned in one visiting order and not another)
     constexpr std::uint32_t no_hint = std::numeric_limits<std::uint32_t>::max();
     std::vector<std::uint32_t> todo_hint{no_hint}, next_hint;
     auto& out = pieces[k];

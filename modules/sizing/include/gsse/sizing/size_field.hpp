@@ -68,7 +68,7 @@ struct spec {
     std::string source;
   };
   std::shared_ptr<const background_mesh> background;  // sidecar "background" (.node/.ele + .mtr)
-  // the boundary pieces the field may cut the faces into (counted over every level) before `build`
+  // the boundary pieces the field may cut the faces into (each counted at the level it is made) before `build`
   // gives up: features far below the model's size (a 1e-8 layer) would need far more
   std::size_t max_pieces = 20'000'000;
 };
