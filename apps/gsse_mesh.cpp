@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -423,7 +424,10 @@ int main(int argc, char** argv) {
         char* end = nullptr;
         errno = 0;
         const long x = std::strtol(v.c_str(), &end, 10);
-        if (v.empty() || end != v.c_str() + v.size() || errno == ERANGE) throw std::invalid_argument(s + ": '" + v + "' is not a whole number");
+        // digits only, a leading minus allowed (strtol would also take "+4" and " 4")
+        if (v.empty() || !(std::isdigit(static_cast<unsigned char>(v[0])) || v[0] == '-') || end != v.c_str() + v.size() ||
+            errno == ERANGE)
+          throw std::invalid_argument(s + ": '" + v + "' is not a whole number");
         return x;
       };
       if (s == "-h" || s == "--help") {

@@ -214,11 +214,11 @@ if [ $rc = 2 ] && [ ! -e "$work/x.vtu" ]; then ok "--check with -o: exit 2"; els
 
 # numbers: the whole value must be one, finite, the option named (stod took "0.2abc" as 0.2, "abc"
 # failed as "stod", --max-steiner -1 wrapped round to a huge limit, --size 1e999 and inf were taken
-# as infinite, --threads abc failed as "stol")
+# as infinite, --threads abc failed as "stol", --threads +4 was taken as 4)
 for bad_arg in "--size 0.2abc:--size: '0.2abc' is not a finite number" "--grade abc:--grade: 'abc' is not a finite number" \
                "--size 1e999:--size: '1e999' is not a finite number" "--size inf:--size: 'inf' is not a finite number" \
                "--grade nan:--grade: 'nan' is not a finite number" "--threads abc:--threads: 'abc' is not a whole number" \
-               "--threads 0:--threads must be a whole number from 1 to 4096" \
+               "--threads 0:--threads must be a whole number from 1 to 4096" "--threads +4:--threads: '+4' is not a whole number" \
                "--quality 0.5:quality: the 3D bound is a radius-edge ratio of at least" \
                "--quality-rounds 3x:--quality-rounds: '3x' is not a whole number" "--max-steiner -1:--max-steiner must not be negative"; do
   opt=${bad_arg%%:*}; want=${bad_arg#*:}
