@@ -24,6 +24,7 @@
 #include "gsse/front/gift_wrap.hpp"
 #include "gsse/geometry/hash_grid.hpp"
 #include "gsse/geometry/predicates.hpp"
+#include "gsse/location/locator.hpp"
 #include "gsse/plc/intersections.hpp"
 #include "gsse/sizing/distance.hpp"
 #include "gsse/sizing/place_points.hpp"
@@ -207,52 +208,15 @@ pieces_t<D> wrap_all_creating(std::vector<point<D>>& pts, const conformer::bound
   return wrap_pieces(pts, b, l, threads);
 }
 
-/// True if q lies in the closed cell c (on its boundary counts: a point on an inner face of the
-/// coarse mesh is inside the domain; one on the PLC becomes a boundary vertex in the conformer).
-template <std::size_t D>
-bool inside_cell(const std::vector<point<D>>& p, const cell_t<D>& c, const point<D>& q) {
-  if constexpr (D == 2) {
-    return geometry::orient2d(p[c[0]], p[c[1]], q) >= 0 && geometry::orient2d(p[c[1]], p[c[2]], q) >= 0 &&
-           geometry::orient2d(p[c[2]], p[c[0]], q) >= 0;
-  } else {
-    // cells are positively oriented and each reference facet faces into its cell: q is in the
-    // closed cell if no facet has it strictly on its outer side
-    for (const auto& f : reference_simplex<3>::facet_vertices)
-      if (geometry::orient3d(p[c[static_cast<std::size_t>(f[0])]], p[c[static_cast<std::size_t>(f[1])]],
-                             p[c[static_cast<std::size_t>(f[2])]], q) < 0)
-        return false;
-    return true;
-  }
-}
-
-/// True if q lies strictly inside cell c (on none of its faces): then no other cell holds it.
-/// Never true of a cell of zero volume: its facets' signed volumes about q sum to the cell's, 0,
-/// so they cannot all be positive (the predicates are exact).
-template <std::size_t D>
-bool strictly_inside_cell(const std::vector<point<D>>& p, const cell_t<D>& c, const point<D>& q) {
-  if constexpr (D == 2) {
-    return geometry::orient2d(p[c[0]], p[c[1]], q) > 0 && geometry::orient2d(p[c[1]], p[c[2]], q) > 0 &&
-           geometry::orient2d(p[c[2]], p[c[0]], q) > 0;
-  } else {
-    for (const auto& f : reference_simplex<3>::facet_vertices)
-      if (geometry::orient3d(p[c[static_cast<std::size_t>(f[0])]], p[c[static_cast<std::size_t>(f[1])]],
-                             p[c[static_cast<std::size_t>(f[2])]], q) <= 0)
-        return false;
-    return true;
-  }
-}
-
 /// The unsized conformed boundary (PLC facets, conformed, no size splits) and a coarse mesh of
 /// it: it bounds the same surface as the sized boundary at a fraction of the cost, and locates
-/// points exactly (point-in-simplex) for the interior point placement and the size field.
+/// points exactly (modules/location) for the interior point placement and the size field. A
+/// point on the PLC counts as inside (the closed cells): the conformer makes it a boundary vertex.
 template <std::size_t D>
 struct coarse_model {
   conformer::boundary<D> b;
   conformer::labelling l;
-  std::vector<cell_t<D>> cells;
-  std::vector<int> cell_region;  // region index of each cell
-  point<D> lo{}, hi{};
-  sizing::box_tree<D> tree;  // the cells' boxes
+  location::locator<D> at;
 
   coarse_model(const plc<D>& p, const conformer::options& co) {
     conformer::options unsized = co;
@@ -261,74 +225,12 @@ struct coarse_model {
     unsized.local_size3 = nullptr;
     b = conformer::conform(p, {}, unsized);
     l = conformer::label(b, p, co.threads);
-    int r = 0;
+    std::vector<std::vector<cell_t<D>>> cells;
     for (const auto& region : wrap_pieces(b.points, b, l, co.threads)) {
-      for (const auto& cs : region) {
-        cells.insert(cells.end(), cs.begin(), cs.end());
-        cell_region.insert(cell_region.end(), cs.size(), r);
-      }
-      ++r;
+      cells.emplace_back();
+      for (const auto& cs : region) cells.back().insert(cells.back().end(), cs.begin(), cs.end());
     }
-    lo = hi = b.points[0];
-    for (const auto& q : b.points)
-      for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
-    // a hierarchy of the coarse cells' boxes: a query tests the cells whose boxes hold the point.
-    // (A uniform grid of buckets, filed by box, made occ_hammer's points each test about 10,000
-    // of its 45,563 long, slanted coarse tetrahedra, 300 of whose boxes held the point.)
-    std::vector<sizing::aabb<D>> boxes(cells.size());
-    for (std::size_t c = 0; c < cells.size(); ++c) {
-      boxes[c] = sizing::aabb<D>::empty();
-      for (auto v : cells[c]) boxes[c].add(b.points[v]);
-    }
-    tree = sizing::box_tree<D>(std::move(boxes), std::vector<double>(cells.size(), 0.0));
-    // a cell of zero volume would hold (closed) every point of its plane within its box: left out
-    // of the look-ups. The wrapper makes none (it turns only positive orientations into cells);
-    // this keeps the look-up right should one ever come
-    flat.assign(cells.size(), 0);
-    for (std::size_t c = 0; c < cells.size(); ++c) {
-      const auto& t = cells[c];
-      if constexpr (D == 2)
-        flat[c] = geometry::orient2d(b.points[t[0]], b.points[t[1]], b.points[t[2]]) == 0;
-      else
-        flat[c] = geometry::orient3d(b.points[t[0]], b.points[t[1]], b.points[t[2]], b.points[t[3]]) == 0;
-    }
-  }
-  std::vector<char> flat;  // 1 for a cell of zero volume
-  static constexpr std::uint32_t no_cell = std::numeric_limits<std::uint32_t>::max();
-  /// The coarse cell of least index holding q, or no_cell.
-  std::uint32_t cell_holding(const point<D>& q) const {
-    std::uint32_t found = no_cell;
-    tree.visit([&](const sizing::aabb<D>& x) { return x.contains(q); }, [&](std::uint32_t c) {
-      if (c < found && !flat[c] && inside_cell(b.points, cells[c], q)) found = c;
-      return true;
-    });
-    return found;
-  }
-  /// Region index of the coarse cell holding q, or -1.
-  int region_of(const point<D>& q) const {
-    const std::uint32_t c = cell_holding(q);
-    return c == no_cell ? -1 : cell_region[c];
-  }
-  /// region_of, trying first the cell that held the last point asked with the same `hint`: if q
-  /// lies strictly inside it, no other cell holds q, so the answer is the same as without the hint
-  /// (a point on a face between cells of two regions is looked up in full). Points asked in a
-  /// row, as the size field's placement asks them, mostly share a coarse cell.
-  int region_of(const point<D>& q, std::uint32_t& hint) const {
-    if (hint < cells.size() && strictly_inside_cell(b.points, cells[hint], q)) return cell_region[hint];
-    const std::uint32_t c = cell_holding(q);
-    if (c == no_cell) return -1;
-    hint = c;
-    return cell_region[c];
-  }
-  bool in_segment(const point<D>& q) const { return cell_holding(q) != no_cell; }
-  /// in_segment, trying first the cell that held the last point asked with the same `hint`
-  /// (points asked in a row, as a lattice's, mostly share a coarse cell; a slanted coarse cell's
-  /// box holds many points, each then with many boxes to test). The same answer.
-  bool in_segment(const point<D>& q, std::uint32_t& hint) const {
-    if (hint < cells.size() && !flat[hint] && inside_cell(b.points, cells[hint], q)) return true;
-    const std::uint32_t c = cell_holding(q);
-    if (c != no_cell) hint = c;
-    return c != no_cell;
+    at = location::locator<D>(b.points, cells);
   }
 };
 
@@ -338,7 +240,7 @@ template <std::size_t D>
 void add_cloud(std::vector<point<D>>& out, const std::vector<point<D>>& cloud, const coarse_model<D>& m,
                std::size_t& dropped, unsigned threads) {
   for (const auto& q : cloud) {
-    if (m.in_segment(q))
+    if (m.at.in_segment(q))
       out.push_back(q);
     else
       ++dropped;
@@ -360,8 +262,8 @@ std::vector<point<D>> field_points(const coarse_model<D>& m, const sizing::size_
   const sizing::box_tree<D> faces(std::move(fb), std::vector<double>(b.faces.size(), 0.0));
   sizing::placement<D> where;
   where.segment_of = [&](const point<D>& q) {
-    thread_local std::uint32_t hint = coarse_model<D>::no_cell;  // per worker: its last cell (region_of)
-    const int r = m.region_of(q, hint);
+    thread_local std::uint32_t hint = location::locator<D>::no_cell;  // per worker: its last cell (region_of)
+    const int r = m.at.region_of(q, hint);
     return r < 0 ? sizing::no_segment : m.l.regions[static_cast<std::size_t>(r)].number;
   };
   where.clear = [&](const point<D>& q, double keep) {
@@ -371,7 +273,7 @@ std::vector<point<D>> field_points(const coarse_model<D>& m, const sizing::size_
       return sizing::face_distance2<D>(F, q) >= keep * keep;
     });
   };
-  auto out = sizing::place_points<D>(h, sizing::aabb<D>{m.lo, m.hi}, where, threads);
+  auto out = sizing::place_points<D>(h, sizing::aabb<D>{m.at.lo(), m.at.hi()}, where, threads);
   add_cloud(out, cloud, m, dropped, threads);
   return out;
 }
@@ -381,8 +283,8 @@ template <std::size_t D>
 std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const std::vector<point<D>>& cloud,
                                      std::size_t& dropped, unsigned threads, bool lattice) {
   const auto& b = m.b;
-  const point<D> lo = m.lo, hi = m.hi;
-  auto in_segment = [&](const point<D>& q, std::uint32_t& hint) { return m.in_segment(q, hint); };
+  const point<D> lo = m.at.lo(), hi = m.at.hi();
+  auto in_segment = [&](const point<D>& q, std::uint32_t& hint) { return m.at.in_segment(q, hint); };
   conformer::options co;
   co.threads = threads;
   std::vector<point<D>> out;
@@ -609,7 +511,7 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
       std::iota(which.begin(), which.end(), std::size_t{0});
       for_each(execution::par(co.threads), which, [&](std::size_t r) {
         const std::uint32_t x = roots[r];
-        root_in[r] = m.in_segment(lattice_point(static_cast<long>(x / per_slab), x % per_slab)) ? 1 : 0;
+        root_in[r] = m.at.in_segment(lattice_point(static_cast<long>(x / per_slab), x % per_slab)) ? 1 : 0;
       });
       in_of.assign(total, 0);
       for (std::size_t r = 0; r < roots.size(); ++r) in_of[roots[r]] = root_in[r];
@@ -620,7 +522,7 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
     for_each(execution::par(co.threads), ids, [&](long s) {
       // filled locally, moved once: neighbouring vectors' headers share cache lines
       std::vector<point<D>> out_s;
-      std::uint32_t hint = coarse_model<D>::no_cell;
+      std::uint32_t hint = location::locator<D>::no_cell;
       const auto& c = clear[static_cast<std::size_t>(s)];
       for (std::size_t k = 0; k < per_slab; ++k) {
         if (!c[k]) continue;
