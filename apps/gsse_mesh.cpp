@@ -376,6 +376,7 @@ int run(const gsse::plc<D>& p, const args& a) {
          << (r.refinement.converged ? "true" : "false") << ", \"rounds\": " << r.refinement.rounds
          << ", \"inserted\": " << r.refinement.inserted << ", \"boundary_splits\": " << r.refinement.split_requests
          << ", \"above_bound\": " << r.refinement.bad_left << ", \"excepted\": " << r.refinement.excepted << ", \"below_floor\": " << r.refinement.below_floor
+         << ", \"outside\": " << r.refinement.outside
          << ", \"excepted_near\": [";
       for (std::size_t k = 0; k < r.refinement.excepted_near.size(); ++k) {
         const auto& x = d.points()[r.refinement.excepted_near[k].first];

@@ -166,7 +166,10 @@ if sys.argv[2] == "1" and a["below_5"] + a["above_170"] > 0:  # SLIVER_FREE (cor
 whole = r.get("full_remeshes", 0)
 print(("" if ok else "NOT CONVERGED: ") + ("MESHED WHOLE %d times: " % whole if whole else "") +
       "%d rounds, %d above the bound, %d excepted (%d below the floor), shortest edge %.2g of the input's"
-      % (r["rounds"], r["above_bound"], r["excepted"], r.get("below_floor", 0), e["shortest"] / e["shortest_input"]))
+      % (r["rounds"], r["above_bound"], r["excepted"], r.get("below_floor", 0), e["shortest"] / e["shortest_input"]) +
+      # circumcentres left out outside every segment, summed over the rounds (none on the corpus
+      # at 1.414, 2026-11-29): shown when there are any
+      (", %d circumcentres left out outside" % r["outside"] if r.get("outside", 0) else ""))
 PY
 )
     printf '%s\n%-28s %-14s %s\n' "$line" "" "" "$verdict" > "$dir/result"
