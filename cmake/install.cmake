@@ -11,7 +11,7 @@ add_library(gsse_mesher INTERFACE)
 add_library(gsse::mesher ALIAS gsse_mesher)
 target_link_libraries(gsse_mesher INTERFACE gsse_pipeline gsse_io gsse_plc gsse_rules)
 
-set(_gsse_targets gsse_core gsse_rules gsse_io gsse_plc gsse_conformer gsse_front gsse_verify gsse_sizing gsse_location gsse_refinement gsse_pipeline gsse_mesher)
+set(_gsse_targets gsse_core gsse_rules gsse_io gsse_plc gsse_conformer gsse_front gsse_verify gsse_sizing gsse_location gsse_placement gsse_refinement gsse_pipeline gsse_mesher)
 foreach(t IN LISTS _gsse_targets)
   string(REPLACE "gsse_" "" _name ${t})
   set_target_properties(${t} PROPERTIES EXPORT_NAME ${_name})
@@ -22,7 +22,7 @@ install(TARGETS ${_gsse_targets} EXPORT gsseTargets
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(TARGETS gsse-mesh RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 foreach(d gsse/include rules/include modules/io/include modules/plc/include modules/conformer/include
-          modules/front/include modules/verify/include modules/sizing/include modules/location/include modules/refinement/include
+          modules/front/include modules/verify/include modules/sizing/include modules/location/include modules/placement/include modules/refinement/include
           modules/pipeline/include)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${d}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()

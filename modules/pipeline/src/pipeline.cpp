@@ -19,15 +19,12 @@
 #include <span>
 #include <type_traits>
 
-#include "gsse/container/union_find.hpp"
 #include "gsse/front/front_mesher.hpp"
 #include "gsse/front/gift_wrap.hpp"
-#include "gsse/geometry/hash_grid.hpp"
 #include "gsse/geometry/predicates.hpp"
 #include "gsse/location/locator.hpp"
+#include "gsse/placement/placement.hpp"
 #include "gsse/plc/intersections.hpp"
-#include "gsse/sizing/distance.hpp"
-#include "gsse/sizing/place_points.hpp"
 #include "gsse/rules/defaults.hpp"
 #include "gsse/topology/incidence.hpp"
 #include "gsse/traversal/for_each.hpp"
@@ -234,306 +231,29 @@ struct coarse_model {
   }
 };
 
-/// The user's cloud points that lie in a segment appended to `out` (the others counted in
-/// `dropped`), then duplicates removed (a cloud point may repeat a lattice point or another one).
+/// The coarse model's boundary as the placement reads it.
 template <std::size_t D>
-void add_cloud(std::vector<point<D>>& out, const std::vector<point<D>>& cloud, const coarse_model<D>& m,
-               std::size_t& dropped, unsigned threads) {
-  for (const auto& q : cloud) {
-    if (m.at.in_segment(q))
-      out.push_back(q);
-    else
-      ++dropped;
-  }
-  gsse::stable_sort(execution::par(threads), out.begin(), out.end(), [](const auto& x, const auto& y) { return lex_less(x, y); });
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+placement::surface<D> surface_of(const coarse_model<D>& m) {
+  return {m.b.points, m.b.faces};
+}
+
+/// Lattice points about h apart (see size_points; none unless `lattice`) plus the cloud.
+template <std::size_t D>
+std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const std::vector<point<D>>& cloud,
+                                     std::size_t& dropped, unsigned threads, bool lattice) {
+  auto out = lattice ? placement::lattice_points<D>(surface_of(m), m.at, h, threads) : std::vector<point<D>>{};
+  placement::add_cloud<D>(out, cloud, m.at, dropped, threads);
+  return out;
 }
 
 /// Points of the size field `h` (graded placement, modules/sizing) plus the cloud.
 template <std::size_t D>
 std::vector<point<D>> field_points(const coarse_model<D>& m, const sizing::size_field<D>& h,
                                    const std::vector<point<D>>& cloud, std::size_t& dropped, unsigned threads) {
-  const auto& b = m.b;
-  std::vector<sizing::aabb<D>> fb(b.faces.size());
-  for (std::size_t f = 0; f < b.faces.size(); ++f) {
-    fb[f] = sizing::aabb<D>::empty();
-    for (vertex_id v : b.faces[f]) fb[f].add(b.points[v]);
-  }
-  const sizing::box_tree<D> faces(std::move(fb), std::vector<double>(b.faces.size(), 0.0));
-  sizing::placement<D> where;
-  where.segment_of = [&](const point<D>& q) {
-    thread_local std::uint32_t hint = location::locator<D>::no_cell;  // per worker: its last cell (region_of)
-    const int r = m.at.region_of(q, hint);
-    return r < 0 ? sizing::no_segment : m.l.regions[static_cast<std::size_t>(r)].number;
-  };
-  where.clear = [&](const point<D>& q, double keep) {
-    return faces.visit([&](const sizing::aabb<D>& bx) { return bx.distance2(q) < keep * keep; }, [&](std::uint32_t f) {
-      std::array<point<D>, D> F;
-      for (std::size_t i = 0; i < D; ++i) F[i] = b.points[b.faces[f][i]];
-      return sizing::face_distance2<D>(F, q) >= keep * keep;
-    });
-  };
-  auto out = sizing::place_points<D>(h, sizing::aabb<D>{m.at.lo(), m.at.hi()}, where, threads);
-  add_cloud(out, cloud, m, dropped, threads);
-  return out;
-}
-
-/// Lattice points about h apart (see size_points) plus the cloud.
-template <std::size_t D>
-std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const std::vector<point<D>>& cloud,
-                                     std::size_t& dropped, unsigned threads, bool lattice) {
-  const auto& b = m.b;
-  const point<D> lo = m.at.lo(), hi = m.at.hi();
-  auto in_segment = [&](const point<D>& q, std::uint32_t& hint) { return m.at.in_segment(q, hint); };
-  conformer::options co;
-  co.threads = threads;
-  std::vector<point<D>> out;
-  if (h > 0 && lattice) {
-    // keep-off distance from the boundary faces (not only their vertices: a lattice point close to
-    // a facet's interior would be projected onto it, leaving a very short edge), through a hash
-    // of the faces' bounding boxes; double distances only place points, they decide no topology
-    // (a hair over half the lattice's neighbour distance h: two neighbours both this far from
-    // every face have no face between them, so the segment test below is asked once per
-    // connected set of clear points; 1e-7 covers the rounding of positions and distances)
-    const double keep = 0.5 * h * (1 + 1e-7);
-    hash_grid<D> near(lo, keep);
-    using cell = typename hash_grid<D>::cell;
-    auto face_distance2 = [&](std::uint32_t f, const point<D>& q) {
-      const auto& F = b.faces[f];
-      if constexpr (D == 2) {
-        return sizing::segment_distance2(b.points[F[0]], b.points[F[1]], q);
-      } else {
-        // closest point of the triangle: the plane's foot if inside, else the nearest edge point
-        return sizing::triangle_distance2(b.points[F[0]], b.points[F[1]], b.points[F[2]], q);
-      }
-    };
-    // the hash's cells over the model's box: a dense map of them is kept where it is small
-    std::array<long, D> dims{};
-    double cells_total = 1;
-    for (std::size_t k = 0; k < D; ++k) {
-      dims[k] = static_cast<long>((hi[k] - lo[k]) / keep) + 1;
-      cells_total *= static_cast<double>(dims[k]);
-      if (dims[k] >= (1l << 20)) cells_total = 1e300;
-    }
-    // a cell clamped into the dense map: a face in a cell within one cell of q's lies within one
-    // cell of q's clamped cell too (clamping keeps the order of coordinates and shortens gaps)
-    auto index_of = [&](const cell& c) {
-      std::size_t i = 0;
-      for (std::size_t k = D; k-- > 0;) i = i * static_cast<std::size_t>(dims[k]) + static_cast<std::size_t>(std::clamp(c[k], 0l, dims[k] - 1));
-      return i;
-    };
-    // each face's cells (not its box: a slanted facet's box is a volume of cells), listed in
-    // parallel. Up to 2^24 cells they are filed in a dense table (faces per cell, counted then
-    // filled in face order), else in the hash: filing 467,000 (cell, face) pairs one by one into
-    // the hash, a vector per cell, was 40 ms of serial work on the rotated trench at 6e5 elements
-    std::vector<std::vector<cell>> face_cells(b.faces.size());
-    {
-      std::vector<std::uint32_t> face_ids(b.faces.size());
-      std::iota(face_ids.begin(), face_ids.end(), std::uint32_t{0});
-      // largest first: a face's cells grow with its extent (to the power D - 1)
-      for_each(execution::par(threads), face_ids, [&](std::uint32_t f) {
-        std::array<point<D>, D> v;
-        for (std::size_t k = 0; k < D; ++k) v[k] = b.points[b.faces[f][k]];
-        near.simplex_cells(v, [&](const cell& c) { face_cells[f].push_back(c); });
-      }, [&](std::uint32_t f) {
-        double e = 0;
-        for (std::size_t k = 1; k < D; ++k) e = std::max(e, distance(b.points[b.faces[f][0]], b.points[b.faces[f][k]]));
-        return std::pow(e / keep + 1, static_cast<double>(D - 1));
-      });
-    }
-    const bool dense = cells_total <= double(1 << 24);
-    std::vector<std::uint32_t> first, listed;  // dense: the faces of cell i are listed[first[i] .. first[i + 1])
-    if (dense) {
-      first.assign(static_cast<std::size_t>(cells_total) + 1, 0);
-      for (const auto& cs : face_cells)
-        for (const auto& c : cs) ++first[index_of(c) + 1];
-      for (std::size_t i = 1; i < first.size(); ++i) first[i] += first[i - 1];
-      listed.resize(first.back());
-      std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
-      for (std::uint32_t f = 0; f < face_cells.size(); ++f)
-        for (const auto& c : face_cells[f]) listed[fill[index_of(c)]++] = f;
-    } else {
-      for (std::uint32_t f = 0; f < face_cells.size(); ++f)
-        for (const auto& c : face_cells[f]) near.insert_cell(f, c);
-    }
-    face_cells = {};
-    // a dense map of the cells the ring search below can find a face from (within one cell of an
-    // occupied one): a lattice point in an unmarked cell is clear without a look at the faces
-    // (most of a slanted model's bounding box is far from every face, and each look reads the 3^D
-    // cells about the point). Marked from the faces' own cells, not their boxes (a slanted face's
-    // box is a volume of cells: on the rotated structures most cells were marked), so a point is
-    // unmarked exactly when the ring search would find no face. Skipped above 2^26 cells or 2^20
-    // along an axis (the hash's cell keys are exact below that).
-    std::vector<char> marked;
-    auto mark_about = [&](const cell& o) {
-      cell a = o, e = o;
-      for (std::size_t k = 0; k < D; ++k) a[k] = std::clamp(o[k] - 1, 0l, dims[k] - 1), e[k] = std::clamp(o[k] + 1, 0l, dims[k] - 1);
-      if constexpr (D == 3) {
-        for (long z = a[2]; z <= e[2]; ++z)
-          for (long y = a[1]; y <= e[1]; ++y)
-            std::fill_n(marked.begin() + ((z * dims[1] + y) * dims[0] + a[0]), e[0] - a[0] + 1, 1);
-      } else {
-        for (long y = a[1]; y <= e[1]; ++y) std::fill_n(marked.begin() + (y * dims[0] + a[0]), e[0] - a[0] + 1, 1);
-      }
-    };
-    if (cells_total <= double(1 << 26)) {
-      marked.assign(static_cast<std::size_t>(cells_total), 0);
-      if (dense) {
-        for (std::size_t i = 0; i + 1 < first.size(); ++i) {
-          if (first[i] == first[i + 1]) continue;
-          cell o;
-          std::size_t r = i;
-          for (std::size_t k = 0; k < D; ++k) o[k] = static_cast<long>(r % static_cast<std::size_t>(dims[k])), r /= static_cast<std::size_t>(dims[k]);
-          mark_about(o);
-        }
-      } else {
-        near.for_each_occupied(mark_about);
-      }
-    }
-    auto clear_of_boundary = [&](const point<D>& q) {
-      const auto c = near.cell_of(q);
-      if (!marked.empty() && !marked[index_of(c)]) return true;
-      if (!dense) return near.visit_ring(q, 1, [&](std::uint32_t f) { return face_distance2(f, q) >= keep * keep; });
-      // the faces in the cells within one cell of q's (clamped) cell
-      cell a, e;
-      for (std::size_t k = 0; k < D; ++k) {
-        const long x = std::clamp(c[k], 0l, dims[k] - 1);
-        a[k] = std::max(x - 1, 0l), e[k] = std::min(x + 1, dims[k] - 1);
-      }
-      // a face meets several of those cells: each is measured once (the few seen so far are kept)
-      std::array<std::uint32_t, 16> seen;
-      std::size_t n_seen = 0;
-      cell at = a;
-      for (;;) {
-        const std::size_t i = index_of(at);
-        for (auto j = first[i]; j < first[i + 1]; ++j) {
-          const std::uint32_t f = listed[j];
-          if (std::find(seen.begin(), seen.begin() + static_cast<long>(n_seen), f) != seen.begin() + static_cast<long>(n_seen)) continue;
-          if (face_distance2(f, q) < keep * keep) return false;
-          if (n_seen < seen.size()) seen[n_seen++] = f;
-        }
-        std::size_t k = 0;
-        while (k < D && ++at[k] > e[k]) at[k] = a[k], ++k;
-        if (k == D) return true;
-      }
-    };
-    // lattice: BCC in 3D (nearest-neighbour distance h), triangular in 2D; the origin is shifted
-    // by odd fractions so lattice points rarely sit exactly on axis-aligned input planes
-    const double a = D == 3 ? 2 * h / std::sqrt(3.0) : h;
-    const double rowh = D == 3 ? a : h * std::sqrt(3.0) / 2;
-    std::array<long, D> n;
-    for (std::size_t k = 0; k < D; ++k) n[k] = static_cast<long>((hi[k] - lo[k]) / (k == 1 && D == 2 ? rowh : a)) + 2;
-    // the lattice point k of slab s (its last index): 3D k = 2 (i n1 + j) + corner/centre
-    const long slabs = n[D - 1];
-    const std::size_t per_slab = D == 3 ? static_cast<std::size_t>(2 * n[0] * n[1]) : static_cast<std::size_t>(n[0]);
-    auto lattice_point = [&](long s, std::size_t k) -> point<D> {
-      if constexpr (D == 3) {
-        const auto ij = static_cast<long>(k / 2);
-        const long i = ij / n[1], j = ij % n[1];
-        point3 q{lo[0] + a * (static_cast<double>(i) + 0.0137), lo[1] + a * (static_cast<double>(j) + 0.0271),
-                 lo[2] + a * (static_cast<double>(s) + 0.0419)};
-        if (k % 2) q = q + point3{a / 2, a / 2, a / 2};
-        return q;
-      } else {
-        const auto i = static_cast<long>(k);
-        return point2{lo[0] + a * (static_cast<double>(i) + 0.0137 + 0.5 * static_cast<double>(s % 2)),
-                      lo[1] + rowh * (static_cast<double>(s) + 0.0271)};
-      }
-    };
-    // 1. which points are clear of the boundary, in parallel by eighths of slabs (slabs near many
-    // faces cost more; whole slabs, handed out in order, left one thread the last costly one)
-    std::vector<std::vector<char>> clear(static_cast<std::size_t>(slabs));
-    for (auto& c : clear) c.resize(per_slab);
-    std::vector<long> ids(static_cast<std::size_t>(slabs));
-    std::iota(ids.begin(), ids.end(), 0l);
-    constexpr long parts = 8;
-    std::vector<long> pieces(static_cast<std::size_t>(slabs * parts));
-    std::iota(pieces.begin(), pieces.end(), 0l);
-    for_each(execution::par(co.threads), pieces, [&](long x) {
-      const long s = x / parts, part = x % parts;
-      auto& c = clear[static_cast<std::size_t>(s)];
-      const std::size_t from = per_slab * static_cast<std::size_t>(part) / parts, to = per_slab * static_cast<std::size_t>(part + 1) / parts;
-      for (std::size_t k = from; k < to; ++k) c[k] = clear_of_boundary(lattice_point(s, k)) ? 1 : 0;
-    });
-    // 2. whether they lie in a segment. Lattice neighbours (3D: a corner and the 8 centres about
-    // it; 2D: the 6 about a point) are h apart, so no face passes between two clear neighbours
-    // (it would come within h/2 < keep of one): the points joined through clear neighbours lie on
-    // one side of every face, and the exact point location is asked once per such set, at its
-    // first point. Skipped (each point asked) for a lattice of over 2^24 points, or coordinates
-    // so far from the origin, against h, that rounding nears the margin.
-    double mag = 0;
-    for (std::size_t k = 0; k < D; ++k) mag = std::max({mag, std::abs(lo[k]), std::abs(hi[k]) + 2 * a});
-    const double points_total = static_cast<double>(per_slab) * static_cast<double>(slabs);
-    const bool joined = points_total <= double(1 << 24) && mag * 256 * std::numeric_limits<double>::epsilon() < 1e-9 * h;
-    std::vector<char> in_of;             // per root: in a segment
-    std::vector<std::uint32_t> root_of;  // per point: its root
-    if (joined) {
-      const std::size_t total = per_slab * static_cast<std::size_t>(slabs);
-      auto is_clear = [&](std::size_t x) { return clear[x / per_slab][x % per_slab] != 0; };
-      union_find<std::uint32_t> uf(total);
-      auto link = [&](std::size_t x, std::size_t y) {
-        if (is_clear(y)) uf.unite(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y));
-      };
-      for (long s = 0; s < slabs; ++s)
-        for (std::size_t k = 0; k < per_slab; ++k) {
-          const std::size_t x = static_cast<std::size_t>(s) * per_slab + k;
-          if (!is_clear(x)) continue;
-          if constexpr (D == 3) {
-            if (k % 2) continue;  // from the corners only: each to the centres of the 8 cubes about it
-            const auto ij = static_cast<long>(k / 2);
-            const long i = ij / n[1], j = ij % n[1];
-            for (long ds = -1; ds <= 0; ++ds)
-              for (long di = -1; di <= 0; ++di)
-                for (long dj = -1; dj <= 0; ++dj) {
-                  const long S = s + ds, I = i + di, J = j + dj;
-                  if (S < 0 || I < 0 || J < 0) continue;
-                  link(x, static_cast<std::size_t>(S) * per_slab + static_cast<std::size_t>(2 * (I * n[1] + J) + 1));
-                }
-          } else {
-            const auto i = static_cast<long>(k);
-            if (i + 1 < n[0]) link(x, x + 1);
-            if (s + 1 < slabs) {
-              const long other = s % 2 ? i + 1 : i - 1;  // the row above is shifted by half the other way
-              for (long I : {i, other})
-                if (I >= 0 && I < n[0]) link(x, static_cast<std::size_t>(s + 1) * per_slab + static_cast<std::size_t>(I));
-            }
-          }
-        }
-      // every point to its root (the smallest index of its set: its first point; parents have
-      // smaller indices, so one pass in order), the roots asked in parallel
-      auto& up = uf.up;
-      for (std::size_t x = 0; x < total; ++x) up[x] = up[up[x]];
-      std::vector<std::uint32_t> roots;
-      for (std::size_t x = 0; x < total; ++x)
-        if (up[x] == x && is_clear(x)) roots.push_back(static_cast<std::uint32_t>(x));
-      std::vector<char> root_in(roots.size());
-      std::vector<std::size_t> which(roots.size());
-      std::iota(which.begin(), which.end(), std::size_t{0});
-      for_each(execution::par(co.threads), which, [&](std::size_t r) {
-        const std::uint32_t x = roots[r];
-        root_in[r] = m.at.in_segment(lattice_point(static_cast<long>(x / per_slab), x % per_slab)) ? 1 : 0;
-      });
-      in_of.assign(total, 0);
-      for (std::size_t r = 0; r < roots.size(); ++r) in_of[roots[r]] = root_in[r];
-      root_of = std::move(up);
-    }
-    // 3. the points kept, in slab order
-    std::vector<std::vector<point<D>>> kept(static_cast<std::size_t>(slabs));
-    for_each(execution::par(co.threads), ids, [&](long s) {
-      // filled locally, moved once: neighbouring vectors' headers share cache lines
-      std::vector<point<D>> out_s;
-      std::uint32_t hint = location::locator<D>::no_cell;
-      const auto& c = clear[static_cast<std::size_t>(s)];
-      for (std::size_t k = 0; k < per_slab; ++k) {
-        if (!c[k]) continue;
-        const point<D> q = lattice_point(s, k);
-        if (joined ? in_of[root_of[static_cast<std::size_t>(s) * per_slab + k]] != 0 : in_segment(q, hint)) out_s.push_back(q);
-      }
-      kept[static_cast<std::size_t>(s)] = std::move(out_s);
-    });
-    for (const auto& k : kept) out.insert(out.end(), k.begin(), k.end());
-  }
-  add_cloud(out, cloud, m, dropped, threads);
+  std::vector<int> numbers;
+  for (const auto& r : m.l.regions) numbers.push_back(r.number);
+  auto out = placement::field_points<D>(surface_of(m), m.at, numbers, h, threads);
+  placement::add_cloud<D>(out, cloud, m.at, dropped, threads);
   return out;
 }
 
