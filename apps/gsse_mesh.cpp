@@ -42,7 +42,7 @@ void usage(std::FILE* to) {
       "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
       "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly] [--msh 4.1|2.2] [--verify-tol R]\n"
       "                 [--grade G] [--no-feature-size] [--quality [B]] [--sliver-angle A]\n"
-      "                 [--acute-guard F] [--quality-rounds N]\n"
+      "                 [--acute-guard F] [--quality-rounds N] [--size-fit]\n"
       "       gsse-mesh INPUT --check MESH [--threads N] [--quiet] [--verify-tol R]\n"
       "  INPUT    TetGen .poly/.smesh (3D), Triangle .poly (2D), or a closed surface: OFF, STL,\n"
       "           Gmsh .msh surface mesh (its volumes become segments)\n"
@@ -79,6 +79,9 @@ void usage(std::FILE* to) {
       "           its front rules the mesher's (front rules imply --fill rules)\n"
       "  --no-merge keep coplanar facets of one marker apart (by default they are merged across\n"
       "           edges no other facet uses, as TetGen does without -M)\n"
+      "  --size-fit measure every edge against the size at its midpoint (the size field, or --size)\n"
+      "           and report how many lie within [0.5, 1.5] of it, below and above, in the summary\n"
+      "           and --stats (quality.size_fit); a pass over every edge, seconds at 5e5 points\n"
       "  --verify-tol R  --verify with facet tolerance R (relative to the input's bounding-box\n"
       "           diagonal; default 1e-9; 0: face vertices exactly in their facets' planes, which\n"
       "           Steiner points on slanted facets cannot be)\n"
@@ -102,6 +105,7 @@ struct args {
   bool no_feature = false;
   unsigned threads = 1;
   bool verify = false, verify_tol_given = false, quiet = false, no_merge = false, msh22 = false;
+  bool size_fit = false;  // --size-fit
   std::size_t max_steiner = gsse::conformer::options{}.max_steiner;
 };
 
@@ -208,6 +212,7 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.size = a.size;
   o.threads = a.threads;
   o.verify = a.verify;
+  o.size_fit = a.size_fit;
   o.quality = a.quality;
   o.quality_bound = a.quality_bound;
   o.sliver_angle = a.sliver_angle;
@@ -324,6 +329,16 @@ int run(const gsse::plc<D>& p, const args& a) {
         std::printf(", %g and above: %zu", q.ratio_bounds.back(), q.ratio_histogram[k]);
     }
     std::printf("\n");
+    if (r.size_measured) {
+      const auto& f = r.size_fit;
+      const double all = static_cast<double>(std::max<std::size_t>(f.edges, 1));
+      std::printf("  size fit: %zu edges against the size at their midpoints: %.1f%% within [0.5, 1.5] of it, %.1f%% below\n"
+                  "           half, %.1f%% above 1.5; ratio min %.3g median %.3g max %.3g\n",
+                  f.edges, 100 * static_cast<double>(f.within) / all, 100 * static_cast<double>(f.below_half) / all,
+                  100 * static_cast<double>(f.above) / all, f.min_ratio, f.median_ratio, f.max_ratio);
+    } else if (a.size_fit) {
+      std::printf("  size fit: no size to fit (give --size, --grade or region volumes)\n");
+    }
     if (r.quality) {
       const auto& st = r.refinement;
       std::printf("  refinement: %s after %zu rounds, %zu circumcentres inserted, %zu boundary faces split;\n"
@@ -371,6 +386,16 @@ int run(const gsse::plc<D>& p, const args& a) {
     js << "]}, \"edges\": {\"shortest\": " << q.shortest_edge << ", \"shortest_input\": " << shortest_in
        << "}, \"uniform_size\": " << (r.uniform_size ? "true" : "false")
        << ", \"min_size\": " << r.min_size;
+    if (r.size_measured) {
+      const auto& f = r.size_fit;
+      js << ", \"size_fit\": {\"edges\": " << f.edges << ", \"below_half\": " << f.below_half << ", \"within\": " << f.within
+         << ", \"above\": " << f.above << ", \"ratio\": {\"min\": " << f.min_ratio << ", \"median\": " << f.median_ratio
+         << ", \"max\": " << f.max_ratio << "}, \"histogram\": [";
+      for (std::size_t k = 0; k < f.histogram.size(); ++k)
+        js << (k ? ", " : "") << "{\"below\": " << (k < f.bounds.size() ? std::to_string(f.bounds[k]) : "null")
+           << ", \"edges\": " << f.histogram[k] << "}";
+      js << "]}";
+    }
     if (r.quality) {
       js << ", \"refinement\": {\"bound\": " << gsse::refinement::ratio_bound(D, a.quality_bound) << ", \"converged\": "
          << (r.refinement.converged ? "true" : "false") << ", \"rounds\": " << r.refinement.rounds
@@ -499,6 +524,8 @@ int main(int argc, char** argv) {
         if (!(a.sliver_angle >= 0 && a.sliver_angle < 30)) throw std::invalid_argument("--sliver-angle must be in [0, 30)");
       } else if (s == "--no-feature-size") {
         a.no_feature = true;
+      } else if (s == "--size-fit") {
+        a.size_fit = true;
       } else if (s == "--verify") {
         a.verify = true;
       } else if (s == "--no-merge") {
@@ -523,8 +550,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (a.verify_tol_given && a.check.empty()) a.verify = true;  // --verify-tol implies --verify
-  if (!a.check.empty() && (!a.output.empty() || !a.stats.empty() || !a.cloud.empty() || a.size > 0 || a.verify)) {
-    std::fprintf(stderr, "gsse-mesh: --check verifies an existing mesh: it takes none of -o, --stats, --cloud, --size, --verify\n");
+  if (!a.check.empty() && (!a.output.empty() || !a.stats.empty() || !a.cloud.empty() || a.size > 0 || a.verify || a.size_fit)) {
+    std::fprintf(stderr, "gsse-mesh: --check verifies an existing mesh: it takes none of -o, --stats, --cloud, --size, --verify, --size-fit\n");
     usage(stderr);
     return 2;
   }

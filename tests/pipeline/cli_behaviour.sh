@@ -18,6 +18,7 @@
 #               excepted at the apex under excepted_near (the apex's coordinates, as many as
 #               `excepted`), the summary names the point; --quality-rounds 3 stops after 3 rounds
 #               (not converged); --acute-guard 0 excepts nothing.
+#  --size-fit   quality.size_fit in --stats equals the counts read back from the mesh written
 #  overwrites   a run that would write over its own input, the input's sidecar (-o BASE.node
 #               beside BASE.poly writes BASE.json; --stats BASE.json) or the --cloud file, or
 #               write one file twice (--stats g.json with -o g.node), exits 1 before meshing with
@@ -270,4 +271,39 @@ if [ $rc = 1 ] && [[ "$err" == *"s.json:1:"*"as a gsse-mesh --stats file does"* 
 else bad "a --stats file as a sidecar: exit $rc, '$err'"; fi
 (cd "$work/ow" && "$mesh" b.poly --size 0.2 -o b1.node --stats b1.stats.json --quiet) && cmp -s "$work/ow/b.json" "$work/ow/b.json.orig" && [ -s "$work/ow/b1.ele" ] ||
   bad "b.poly -o b1.node --stats b1.stats.json: did not mesh, or the sidecar changed"
+# --size-fit: quality.size_fit in --stats counts each segment's edges against the size at their
+# midpoints (uniform --size here: 0.2); read back from the .node/.ele written (each segment's edges
+# once, an interface edge in both), the counts must be the same; the summary says it; without a
+# size it says there is none; --check takes no --size-fit
+"$mesh" "$work/box.poly" --size 0.2 --size-fit --quiet -o "$work/fit.node" --stats "$work/fit.stats.json" || bad "--size-fit did not mesh"
+got=$($py - "$work/fit" <<'PY'
+import json, math, sys
+base = sys.argv[1]
+def rows(path):
+    return [l.split() for l in open(path) if l.strip() and not l.lstrip().startswith("#")]
+node = rows(base + ".node"); ele = rows(base + ".ele")
+P = {int(r[0]): tuple(map(float, r[1:4])) for r in node[1:]}
+edges = set()
+for r in ele[1:]:
+    v = list(map(int, r[1:5])); seg = r[5]
+    for i in range(4):
+        for j in range(i + 1, 4):
+            edges.add((seg, min(v[i], v[j]), max(v[i], v[j])))
+below = within = above = 0
+for seg, u, v in edges:
+    x = math.dist(P[u], P[v]) / 0.2
+    below += x < 0.5; above += x > 1.5; within += 0.5 <= x <= 1.5
+f = json.load(open(base + ".stats.json"))["quality"]["size_fit"]
+mine = (len(edges), below, within, above)
+theirs = (f["edges"], f["below_half"], f["within"], f["above"])
+print("same" if mine == theirs and sum(h["edges"] for h in f["histogram"]) == f["edges"] else "read back %s, --stats %s" % (mine, theirs))
+PY
+)
+if [ "$got" = same ]; then ok "--size-fit: quality.size_fit counts equal those read back from the mesh"; else bad "--size-fit: $got"; fi
+out=$("$mesh" "$work/box.poly" --size 0.2 --size-fit -o "$work/fit2.vtu" 2>&1)
+[[ "$out" == *"size fit: "*" edges against the size at their midpoints"* ]] && ok "--size-fit: the summary's line" || bad "--size-fit: no summary line"
+out=$("$mesh" "$work/box.poly" --size-fit -o "$work/fit3.vtu" 2>&1)
+[[ "$out" == *"size fit: no size to fit"* ]] && ok "--size-fit without a size: says so" || bad "--size-fit without a size: '$out'"
+err=$("$mesh" "$work/box.poly" --check "$work/fit.node" --size-fit 2>&1 >/dev/null); rc=$?
+[ $rc = 2 ] && [[ "$err" == *"--size-fit"* ]] && ok "--check with --size-fit: exit 2" || bad "--check with --size-fit: exit $rc, '$err'"
 exit $fail

@@ -12,6 +12,7 @@
 
 #include "gsse/io/sidecar.hpp"
 #include "gsse/pipeline/pipeline.hpp"
+#include "gsse/sizing/fit.hpp"
 #include "gsse/sizing/inputs.hpp"
 #include "gsse/sizing/place_points.hpp"
 #include "gsse/sizing/size_field.hpp"
@@ -543,4 +544,52 @@ BOOST_AUTO_TEST_CASE(own_growth_rates) {
   auto bad = s;
   bad.interfaces[0].grade = 0.5;
   BOOST_CHECK_THROW(two_triangles(pts, sides, bad), std::invalid_argument);
+}
+
+// sizing::edge_fit on two tetrahedra sharing a face, one per segment: the corner tetrahedron
+// (0,0,0) (1,0,0) (0,1,0) (0,0,1), edges 1 (x3) and sqrt 2 (x3), and beside it the regular one
+// over the shared face with (1,1,1), every edge sqrt 2. Each segment's edges count (the three
+// shared ones in both): 12. Against a uniform size and against a field whose segment 2 has a
+// maximum of its own, with the counts, extremes and bins worked out by hand.
+BOOST_AUTO_TEST_CASE(edge_fit_counts_each_segments_edges_against_the_size) {
+  domain<3> d;
+  for (const point3& x : {point3{0, 0, 0}, point3{1, 0, 0}, point3{0, 1, 0}, point3{0, 0, 1}, point3{1, 1, 1}}) d.add_point(x);
+  d.add_segment("corner", 1).add_cell({0, 1, 2, 3});
+  d.add_segment("regular", 2).add_cell({1, 2, 3, 4});
+  const double r2 = std::sqrt(2.0);
+  {
+    const auto f = sizing::edge_fit<3>(d, nullptr, 1.0, 2);
+    BOOST_TEST(f.edges == 12u);
+    BOOST_TEST(f.within == 12u);
+    BOOST_TEST(f.below_half + f.above == 0u);
+    BOOST_TEST(f.min_ratio == 1.0);
+    BOOST_TEST(f.max_ratio == r2);
+    BOOST_TEST(f.median_ratio == r2);  // 3 of 12 are 1
+    BOOST_TEST(f.histogram[4] == 3u);  // [1, 1.25)
+    BOOST_TEST(f.histogram[5] == 9u);  // [1.25, 1.5)
+  }
+  {
+    const auto f = sizing::edge_fit<3>(d, nullptr, 0.9, 1);  // 1.11 (x3), 1.57 (x9)
+    BOOST_TEST(f.within == 3u);
+    BOOST_TEST(f.above == 9u);
+    BOOST_TEST(f.histogram[6] == 9u);  // [1.5, 2)
+  }
+  {
+    const auto f = sizing::edge_fit<3>(d, nullptr, 3.0, 1);  // 0.33 (x3), 0.47 (x9)
+    BOOST_TEST(f.below_half == 12u);
+    BOOST_TEST(f.histogram[1] == 12u);  // [0.25, 0.5)
+  }
+  // a field: 1 everywhere (the global size; no feature size term), and a
+  // maximum of 0.5 inside segment 2: its six edges at 2 sqrt 2, the corner's as before
+  sizing::spec<3> s;
+  s.global = 1.0;
+  s.feature_size = false;
+  s.segment_size[2] = 0.5;
+  const auto h = two_triangles({{50, 50, 50}, {51, 50, 50}, {50, 51, 50}, {50, 50, 60}, {51, 50, 60}, {50, 51, 60}}, {{1, 0}, {0, 1}}, s);
+  BOOST_TEST(h(point3{0.5, 0.5, 0.5}) == 1.0);
+  const auto f = sizing::edge_fit<3>(d, &h, 0.0, 2);
+  BOOST_TEST(f.edges == 12u);
+  BOOST_TEST(f.within == 6u);
+  BOOST_TEST(f.above == 6u);
+  BOOST_TEST(f.max_ratio == 2 * r2, boost::test_tools::tolerance(1e-12));
 }

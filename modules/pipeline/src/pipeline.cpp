@@ -417,6 +417,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   const bool refined_interior = D == 2 && o.quality && !creating;
   std::vector<point<D>> volume;
   sizing::size_field<D> field;
+  bool field_built = false;  // the field above was built (graded sizing or region volumes)
   bool feature_size_fits = false;  // the local feature size was built within its budget
   // a region's maximum volume (TetGen's region attribute) is a size constraint of its own
   const bool volumes = std::any_of(p.regions.begin(), p.regions.end(), [](const auto& x) { return x.max_volume > 0; });
@@ -437,6 +438,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
         o.progress("sizing: local feature size, " + std::to_string(done) + " of " + std::to_string(all) + " boundary faces");
       };
     field = sizing::build(view, sp, o.threads, tick);
+    field_built = true;
     feature_size_fits = sp.feature_size;
     if (o.progress) o.progress("sizing: placing points");
     r.uniform_size = field.uniform();
@@ -540,6 +542,12 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   }
   d.marker_names() = p.marker_names;
   lap(o.quality ? "quality" : "mesh");
+  // the edges against the size they were made for: the field where there is one, else --size
+  if (o.size_fit && (field_built || o.size > 0)) {
+    r.size_fit = sizing::edge_fit<D>(d, field_built ? &field : nullptr, o.size, o.threads);
+    r.size_measured = true;
+    lap("size fit");
+  }
   if (o.verify) {
     // against the input PLC itself, not the conformed boundary and labels the mesh was made from
     verify::options vo;

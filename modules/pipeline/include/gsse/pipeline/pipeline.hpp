@@ -15,6 +15,7 @@
 #include "gsse/container/plc.hpp"
 #include "gsse/front/point_creation.hpp"
 #include "gsse/refinement/refinement.hpp"
+#include "gsse/sizing/fit.hpp"
 #include "gsse/sizing/size_field.hpp"
 #include "gsse/verify/verify.hpp"
 
@@ -46,6 +47,9 @@ struct options {
   std::size_t quality_rounds = 0;  // with quality: the round cap (0: refinement::options default)
   unsigned threads = 1;  // threads shared by the stages (0: every hardware thread, execution::thread_count)
   bool verify = false;   // run the library verifier (gsse::verify::check against the input PLC) at the end
+  // measure every edge against the size at its midpoint at the end (report::size_fit; timed as
+  // "size fit"): with a size field or --size only
+  bool size_fit = false;
   double verify_tolerance = verify::options{}.facet_tolerance;  // the verifier's facet tolerance
   conformer::options conform{};
   // stage messages, may be empty; called from the calling thread or, while the size field is built,
@@ -67,6 +71,8 @@ struct report {
   front::creation_stats creation{};  // fill::rules
   bool quality = false;              // options::quality was set
   refinement::stats refinement{};    // its rounds, insertions and the elements left above the bound
+  bool size_measured = false;        // options::size_fit was set and there was a size to fit
+  sizing::fit size_fit{};            // then: the edges against the size at their midpoints
   std::vector<std::string> problems;  // from the verifier, when options::verify
 };
 
