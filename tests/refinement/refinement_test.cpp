@@ -9,6 +9,7 @@
 #include "gsse/conformer/conformer.hpp"
 #include "gsse/io/poly.hpp"
 #include "gsse/pipeline/pipeline.hpp"
+#include "gsse/sizing/fit.hpp"
 #include "gsse/refinement/refinement.hpp"
 #include "support/shared.hpp"
 #include "support/stack.hpp"
@@ -122,6 +123,26 @@ BOOST_AUTO_TEST_CASE(radius_edge_bound_3d) {
     BOOST_TEST(q.above170 == 0u);
     BOOST_TEST(q.min_angle >= 5.0);
     BOOST_TEST(q.max_angle <= 170.0);
+  }
+}
+
+// --quality 1.414 with a uniform --size H (no grading: the lattice fills the segments): no edge
+// longer than 1.5 H (the bound; the band between the boundary and the first lattice layer
+// left up to 1.9 H before the refinement took the size too), on the axis-aligned and the rotated
+// stack, measured by sizing::edge_fit; the bound still holds and the mesh verifies
+BOOST_AUTO_TEST_CASE(uniform_size_bounds_the_edges_3d) {
+  for (bool rotated : {false, true}) {
+    pl::options o = quality_options(1.414, 2, 0.1);
+    o.graded = false;
+    pl::report r;
+    const auto p = stack(1, {0, 0.4, 0.5, 1}, rotated);
+    const auto d = pl::mesh(p, {}, o, r);
+    BOOST_TEST(r.problems.empty(), (rotated ? "rotated: " : "") << (r.problems.empty() ? "" : r.problems.front()));
+    BOOST_TEST(r.refinement.converged);
+    const auto f = sizing::edge_fit<3>(d, nullptr, 0.1, 2);
+    BOOST_TEST(f.edges > 1000u);
+    BOOST_TEST(f.above == 0u, (rotated ? "rotated: " : "") << f.above << " of " << f.edges << " edges above 1.5 H, the longest " << f.max_ratio << " H");
+    BOOST_TEST(pl::measure(d).max_ratio <= 1.414 * (1 + 1e-9));
   }
 }
 

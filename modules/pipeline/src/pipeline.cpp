@@ -520,6 +520,12 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
           ro.size2 = [h = o.size](const point2&) { return h; };
       }
     }
+    // 3D, a uniform size: no edge longer than 1.5 H (the band between the boundary and the first
+    // lattice layer, kept h/2 off every face, left 0.1-1.8% of the edges above it on the benchmark
+    // structures; docs/benchmarks.md, thirty-fifth part). A graded field is not asked: a query
+    // per element measured costs a microsecond or two, and graded meshes end at most 0.43% above
+    if constexpr (D == 3)
+      if (o.size > 0 && (!field_built || field.uniform())) ro.size3 = [h = o.size](const point3&) { return h; };
     refinement::meshers<D> m;
     m.wrap = [&](const conformer::boundary<D>& bb, const conformer::labelling& ll) { return mesh_segments<D>::wrap(bb, ll, o.threads); };
     m.assemble = [&](const conformer::boundary<D>& bb, const conformer::labelling& ll, refinement::cells_by_region<D> cc) {

@@ -561,11 +561,14 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
     for (std::size_t ci = 0; ci < chunks[k].cells.size(); ++ci) {
       const auto& c = chunks[k].cells[ci];
       if (flag && !flag[ci]) continue;
-      double shortest = 1e300;
+      double shortest = 1e300, longest = 0;
       std::size_t si = 0, sj = 1;
       for (std::size_t i = 0; i <= D; ++i)
-        for (std::size_t j = i + 1; j <= D; ++j)
-          if (const double l2 = squared_distance(p[c[i]], p[c[j]]); l2 < shortest) shortest = l2, si = i, sj = j;
+        for (std::size_t j = i + 1; j <= D; ++j) {
+          const double l2 = squared_distance(p[c[i]], p[c[j]]);
+          if (l2 < shortest) shortest = l2, si = i, sj = j;
+          longest = std::max(longest, l2);
+        }
       point<D> at;
       double r;
       const bool round = circumball(p, c, at, r);
@@ -580,7 +583,18 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
           bad_shape = most > cos_sliver || least < cos_flat;
         }
       }
-      if (!bad_shape && !(size && 3 * r * r > size(at) * size(at))) {
+      // too large for the size field: 2D a circumradius above h / sqrt 3 (the equilateral triangle
+      // of side h), 3D an edge longer than 1.5 h (the regular lattice's own tetrahedra have a
+      // circumradius of 0.65 h, above h / sqrt 3; the bound is 1.5 h), h at the circumcentre
+      auto too_large = [&] {
+        if (!size) return false;
+        const double h = size(at);
+        if constexpr (D == 2)
+          return 3 * r * r > h * h;
+        else
+          return longest > 2.25 * h * h;
+      };
+      if (!bad_shape && !too_large()) {
         if (flag) flag[ci] = 0;  // good, and a cell never changes: not looked at again
         continue;
       }

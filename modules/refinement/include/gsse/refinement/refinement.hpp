@@ -43,8 +43,10 @@ struct options {
   // sliver_angle (5: below 5 or above 170 degrees) is refined like a bad one, by its circumcentre
   // (0: radius-edge only). Not in the theory's guarantee; converges on the benchmark structures
   double sliver_angle = 5;
-  // a size field: an element whose circumradius exceeds h(circumcentre) / sqrt 3 (the equilateral
-  // triangle of side h; 3D the same bound) is refined too, whatever its shape. Empty: shape only
+  // a size field: an element too large for h(circumcentre) is refined too, whatever its shape: 2D
+  // a circumradius above h / sqrt 3 (the equilateral triangle of side h), 3D an edge longer than
+  // 1.5 h (the bound; the BCC lattice's own tetrahedra, edges h and 1.15 h, stay).
+  // Empty: shape only
   std::function<double(const point2&)> size2;
   std::function<double(const point3&)> size3;
   // 3D small input angles: a bad element whose circumcentre lies within acute_guard x the
