@@ -6,34 +6,33 @@
 
 namespace gsse::location {
 
-template <std::size_t D>
-bool inside_cell(const std::vector<point<D>>& p, const cell_t<D>& c, const point<D>& q) {
+namespace {
+/// No facet of c has q on its outer side (Strict: nor on its plane). Each reference facet (2D: the
+/// edges in turn) faces into the positively oriented cell.
+template <bool Strict, std::size_t D>
+bool on_inner_sides(const std::vector<point<D>>& p, const cell_t<D>& c, const point<D>& q) {
+  auto inner = [](int o) { return Strict ? o > 0 : o >= 0; };
   if constexpr (D == 2) {
-    return geometry::orient2d(p[c[0]], p[c[1]], q) >= 0 && geometry::orient2d(p[c[1]], p[c[2]], q) >= 0 &&
-           geometry::orient2d(p[c[2]], p[c[0]], q) >= 0;
+    return inner(geometry::orient2d(p[c[0]], p[c[1]], q)) && inner(geometry::orient2d(p[c[1]], p[c[2]], q)) &&
+           inner(geometry::orient2d(p[c[2]], p[c[0]], q));
   } else {
-    // each reference facet faces into its cell: q is in the closed cell if no facet has it
-    // strictly on its outer side
     for (const auto& f : reference_simplex<3>::facet_vertices)
-      if (geometry::orient3d(p[c[static_cast<std::size_t>(f[0])]], p[c[static_cast<std::size_t>(f[1])]],
-                             p[c[static_cast<std::size_t>(f[2])]], q) < 0)
+      if (!inner(geometry::orient3d(p[c[static_cast<std::size_t>(f[0])]], p[c[static_cast<std::size_t>(f[1])]],
+                                    p[c[static_cast<std::size_t>(f[2])]], q)))
         return false;
     return true;
   }
 }
+}  // namespace
+
+template <std::size_t D>
+bool inside_cell(const std::vector<point<D>>& p, const cell_t<D>& c, const point<D>& q) {
+  return on_inner_sides<false, D>(p, c, q);
+}
 
 template <std::size_t D>
 bool strictly_inside_cell(const std::vector<point<D>>& p, const cell_t<D>& c, const point<D>& q) {
-  if constexpr (D == 2) {
-    return geometry::orient2d(p[c[0]], p[c[1]], q) > 0 && geometry::orient2d(p[c[1]], p[c[2]], q) > 0 &&
-           geometry::orient2d(p[c[2]], p[c[0]], q) > 0;
-  } else {
-    for (const auto& f : reference_simplex<3>::facet_vertices)
-      if (geometry::orient3d(p[c[static_cast<std::size_t>(f[0])]], p[c[static_cast<std::size_t>(f[1])]],
-                             p[c[static_cast<std::size_t>(f[2])]], q) <= 0)
-        return false;
-    return true;
-  }
+  return on_inner_sides<true, D>(p, c, q);
 }
 
 template <std::size_t D>
