@@ -313,7 +313,7 @@ std::vector<point<D>> lattice_points(const surface<D>& b, const location::locato
       // face (the closest point of it) to `lift` above it; in lattice order, a moved point is added
       // when it is clear of the boundary, in a segment, and at least `gap` from every point kept
       // so far. Chosen on the 8 benchmark structures (docs/benchmarks.md part 36): lift 0.6 h and
-      // gap 0.65 h left 0-25 edges above 1.5 h of about 1e5 (1,000-2,000 before), points +3-9%;
+      // gap 0.65 h left 0-25 edges above 1.5 h of about 1.1e5 (160-2,131 before), points +3-12%;
       // a gap of 0.7 h left up to 90, a lift of 0.7 h up to 400.
       const double gap = 0.65 * h, lift = 0.6 * h;
       // the lattice indices within r of x along axis k (3D corners at shift 0, centres at 1/2; 2D

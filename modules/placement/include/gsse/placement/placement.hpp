@@ -28,8 +28,10 @@ struct surface {
 /// apart), triangular in 2D, the origin shifted by odd fractions of a step so that points rarely
 /// sit on axis-aligned input planes; each a hair over h/2 from every face of `b` (a point nearer
 /// a facet would be projected onto it, leaving a very short edge). Located exactly once per set
-/// of clear lattice neighbours (no face passes between two of them). In lattice order, the same
-/// for any thread count. None when h <= 0.
+/// of clear lattice neighbours (no face passes between two of them). Then the band the h/2 leaves
+/// next to the boundary: each lattice point dropped there moved to 0.6 h off its nearest face, and
+/// added when clear, in a segment and 0.65 h from every point kept so far (README, step 4). In
+/// lattice order, the same for any thread count. None when h <= 0.
 template <std::size_t D>
 std::vector<point<D>> lattice_points(const surface<D>& b, const location::locator<D>& at, double h, unsigned threads);
 
