@@ -268,7 +268,12 @@ BOOST_AUTO_TEST_CASE(small_dihedral_angle_exception) {
     o0.verify = false;
     pl::report r0;
     (void)pl::mesh(p, {}, o0, r0);
-    BOOST_TEST(r0.refinement.bad_left > 20 * r.refinement.bad_left, r0.refinement.bad_left << " left without the exceptions after 8 rounds");
+    // without them the refinement splits toward the knife's edge: after 8 rounds over 20 times
+    // the elements left, or a round fails first when no new split point is left there (the
+    // rotated knife since graded points keep 0.55 h apart: round 8, 1,393 left after round 7)
+    BOOST_TEST(!r0.refinement.converged);
+    BOOST_TEST((!r0.refinement.failure.empty() || r0.refinement.bad_left > 20 * r.refinement.bad_left),
+               r0.refinement.bad_left << " left without the exceptions after " << r0.refinement.rounds << " rounds" << (r0.refinement.failure.empty() ? "" : ", then: ") << r0.refinement.failure);
   }
 }
 

@@ -9,8 +9,9 @@
 // (deduplicated: levels share corners exactly, every coordinate, a cube's centre included, being
 // computed by one formula as the origin plus a dyadic multiple of one spacing, so points on one
 // lattice plane are exactly coplanar) are then taken greedily, coarse levels first, dropping a point that lies in no segment,
-// nearer than half its spacing to the boundary, or nearer than 0.8 of the smaller spacing to a
-// point already taken. The classification is parallel; the greedy pass is sequential, in a fixed
+// nearer than half its spacing to the boundary, or nearer to a point already taken than 0.8 of the
+// smaller spacing or 0.55 h at its cube's centre (2D 0.5 h: without it a finer level's points
+// crowded a coarser one's, edges below h/2). The classification is parallel; the greedy pass is sequential, in a fixed
 // order, so the points are the same for any thread count.
 #include <functional>
 #include <limits>
