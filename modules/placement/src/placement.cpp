@@ -14,7 +14,6 @@
 
 namespace gsse::placement {
 
-
 template <std::size_t D>
 void add_cloud(std::vector<point<D>>& out, const std::vector<point<D>>& cloud, const location::locator<D>& at,
                std::size_t& dropped, unsigned threads) {
@@ -374,11 +373,11 @@ std::vector<point<D>> lattice_points(const surface<D>& b, const location::locato
       std::uint32_t hint = location::locator<D>::no_cell;
       for (const auto& m : moved)
         for (const point<D>& q : m) {
-        if (near_kept(q)) continue;
-        if (!added.visit_ring(q, 1, [&](std::uint32_t x) { return squared_distance(band[x], q) >= gap * gap; })) continue;
-        if (!clear_of_boundary(q) || !in_segment(q, hint)) continue;
-        added.insert(static_cast<std::uint32_t>(band.size()), q);
-        band.push_back(q);
+          if (near_kept(q)) continue;
+          if (!added.visit_ring(q, 1, [&](std::uint32_t x) { return squared_distance(band[x], q) >= gap * gap; })) continue;
+          if (!clear_of_boundary(q) || !in_segment(q, hint)) continue;
+          added.insert(static_cast<std::uint32_t>(band.size()), q);
+          band.push_back(q);
         }
       out.insert(out.end(), band.begin(), band.end());
     }
