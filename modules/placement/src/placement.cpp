@@ -195,6 +195,8 @@ std::vector<point<D>> lattice_points(const surface<D>& b, const location::locato
     const double rowh = D == 3 ? a : h * std::sqrt(3.0) / 2;
     std::array<long, D> n;
     for (std::size_t k = 0; k < D; ++k) n[k] = static_cast<long>((hi[k] - lo[k]) / (k == 1 && D == 2 ? rowh : a)) + 2;
+    // the origin's shift along each axis, in steps (the band's index ranges below use it too)
+    static constexpr double off[3] = {0.0137, 0.0271, 0.0419};
     // the lattice point k of slab s (its last index): 3D k = 2 (i n1 + j) + corner/centre
     const long slabs = n[D - 1];
     const std::size_t per_slab = D == 3 ? static_cast<std::size_t>(2 * n[0] * n[1]) : static_cast<std::size_t>(n[0]);
@@ -202,14 +204,14 @@ std::vector<point<D>> lattice_points(const surface<D>& b, const location::locato
       if constexpr (D == 3) {
         const auto ij = static_cast<long>(k / 2);
         const long i = ij / n[1], j = ij % n[1];
-        point3 q{lo[0] + a * (static_cast<double>(i) + 0.0137), lo[1] + a * (static_cast<double>(j) + 0.0271),
-                 lo[2] + a * (static_cast<double>(s) + 0.0419)};
+        point3 q{lo[0] + a * (static_cast<double>(i) + off[0]), lo[1] + a * (static_cast<double>(j) + off[1]),
+                 lo[2] + a * (static_cast<double>(s) + off[2])};
         if (k % 2) q = q + point3{a / 2, a / 2, a / 2};
         return q;
       } else {
         const auto i = static_cast<long>(k);
-        return point2{lo[0] + a * (static_cast<double>(i) + 0.0137 + 0.5 * static_cast<double>(s % 2)),
-                      lo[1] + rowh * (static_cast<double>(s) + 0.0271)};
+        return point2{lo[0] + a * (static_cast<double>(i) + off[0] + 0.5 * static_cast<double>(s % 2)),
+                      lo[1] + rowh * (static_cast<double>(s) + off[1])};
       }
     };
     // 1. which points are clear of the boundary, in parallel by eighths of slabs (slabs near many
@@ -318,7 +320,6 @@ std::vector<point<D>> lattice_points(const surface<D>& b, const location::locato
       // the lattice indices within r of x along axis k (3D corners at shift 0, centres at 1/2; 2D
       // along x the row's shift, along y the rows)
       auto range = [&](double x, std::size_t k, double shift, double r) {
-        constexpr double off[3] = {0.0137, 0.0271, 0.0419};
         const double step = D == 2 && k == 1 ? rowh : a;
         const double u = (x - lo[k]) / step - off[k] - shift;
         return std::pair<long, long>{static_cast<long>(std::ceil(u - r / step)), static_cast<long>(std::floor(u + r / step))};
