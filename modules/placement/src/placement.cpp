@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 #include "gsse/container/union_find.hpp"
 #include "gsse/geometry/hash_grid.hpp"
@@ -27,6 +28,34 @@ void add_cloud(std::vector<point<D>>& out, const std::vector<point<D>>& cloud, c
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
+namespace {
+
+/// The closest point (foot) of the faces of `b` offered to it, of those within `keep` of q; then
+/// q carried to `lift` off that foot (the band's move, README step 4), or nothing if none was
+/// within `keep` or q lies on a face.
+template <std::size_t D>
+struct nearest_foot {
+  const surface<D>& b;
+  point<D> q;
+  double best;  // squared distance of the closest so far (keep^2 at first)
+  point<D> foot{};
+  nearest_foot(const surface<D>& b_, const point<D>& q_, double keep) : b(b_), q(q_), best(keep * keep) {}
+  bool operator()(std::uint32_t f) {
+    std::array<point<D>, D> F;
+    for (std::size_t i = 0; i < D; ++i) F[i] = b.points[b.faces[f][i]];
+    const point<D> c = sizing::face_closest<D>(F, q);
+    const double d2 = squared_distance(c, q);
+    if (d2 < best) best = d2, foot = c;
+    return true;
+  }
+  std::optional<point<D>> lifted(double keep, double lift) const {
+    if (best >= keep * keep || best <= 0) return std::nullopt;
+    return foot + (lift / std::sqrt(best)) * (q - foot);
+  }
+};
+
+}  // namespace
+
 template <std::size_t D>
 std::vector<point<D>> field_points(const surface<D>& b, const location::locator<D>& at, const std::vector<int>& numbers,
                                    const sizing::size_field<D>& h, unsigned threads) {
@@ -48,6 +77,11 @@ std::vector<point<D>> field_points(const surface<D>& b, const location::locator<
       for (std::size_t i = 0; i < D; ++i) F[i] = b.points[b.faces[f][i]];
       return sizing::face_distance2<D>(F, q) >= keep * keep;
     });
+  };
+  where.away = [&](const point<D>& q, double keep, double lift) {
+    nearest_foot<D> n(b, q, keep);
+    faces.visit_near(q, [&](const sizing::aabb<D>& bx) { return bx.distance2(q) < n.best; }, n);
+    return n.lifted(keep, lift);
   };
   return sizing::place_points<D>(h, sizing::aabb<D>{at.lo(), at.hi()}, where, threads);
 }
@@ -329,20 +363,9 @@ std::vector<point<D>> lattice_points(const surface<D>& b, const location::locato
         auto& m = moved[static_cast<std::size_t>(s)];
         for (std::size_t k = 0; k < per_slab; ++k) {
           if (clear[static_cast<std::size_t>(s)][k]) continue;
-          const point<D> p = lattice_point(s, k);
-          double best = keep * keep;
-          point<D> foot{};
-          visit_faces_near(p, [&](std::uint32_t f) {
-            std::array<point<D>, D> F;
-            for (std::size_t i = 0; i < D; ++i) F[i] = b.points[b.faces[f][i]];
-            const point<D> c = sizing::face_closest<D>(F, p);
-            const double d2 = squared_distance(c, p);
-            if (d2 < best) best = d2, foot = c;
-            return true;
-          });
-          if (best >= keep * keep || best <= 0) continue;
-          const double d = std::sqrt(best);
-          m.push_back(foot + (lift / d) * (p - foot));
+          nearest_foot<D> nf(b, lattice_point(s, k), keep);
+          visit_faces_near(nf.q, nf);
+          if (const auto q = nf.lifted(keep, lift)) m.push_back(*q);
         }
       });
       // whether a kept lattice point lies within gap of q

@@ -21,6 +21,8 @@ struct candidate {
 };
 
 constexpr int max_level = 40;
+// the band (the uniform lattice's lift and gap, modules/placement/README.md step 4)
+constexpr double band_lift = 0.6, band_gap = 0.65;
 
 }  // namespace
 
@@ -30,12 +32,13 @@ std::vector<point<D>> place_points(const size_field<D>& h, const aabb<D>& box, c
   const double extent = std::sqrt(squared_distance(box.lo, box.hi));
   const double d0 = std::isfinite(h.global()) ? std::min(h.global(), extent) : 0.5 * extent;
   return place_points<D>([&h](const point<D>& x, int seg) { return seg == no_segment ? h(x) : h(x, seg); }, d0, box,
-                         where, threads);
+                         where, threads, 1.0, true, h.global());
 }
 
 template <std::size_t D>
 std::vector<point<D>> place_points(const std::function<double(const point<D>&, int)>& h, double d0, const aabb<D>& box,
-                                   const placement<D>& where, unsigned threads, double stretch) {
+                                   const placement<D>& where, unsigned threads, double stretch,
+                                   bool parent, double band_from) {
   const double extent = std::sqrt(squared_distance(box.lo, box.hi));
   if (!(extent > 0) || !(d0 > 0)) return {};
   // cube side of the level-0 lattice: BCC nearest neighbours at sqrt(3)/2 a; 2D: squares of side
@@ -69,7 +72,8 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
     auto& out = per_root[r];
     std::uint64_t order = 0;
     // cube at `level` with min corner index i (in units of a0 / 2^level)
-    auto visit = [&](auto&& self, const std::array<std::int64_t, D>& i, int level) -> void {
+    // hp: h at the parent cube's centre (unbounded at a root)
+    auto visit = [&](auto&& self, const std::array<std::int64_t, D>& i, int level, double hp) -> void {
       const double a = std::ldexp(a0, -level), d = std::ldexp(d0, -level);
       // the centre as the next level's corner 2i + 1, by the same formula: lo + a / 2 rounds
       // differently, and centres then sat an ulp off the plane of the corners beside them, whose
@@ -85,12 +89,17 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
         if (lo[k] > box.hi[k] + a || lo[k] + a < box.lo[k] - a) return;
       const int seg = where.segment_of(c);
       const double hc = h(c, seg);
-      // the coarsest level whose spacing is at most stretch * h (1: spacings in (h/2, h])
-      if (d > stretch * hc && level < max_level) {
+      // the coarsest level whose spacing is at most stretch * h (1: spacings in (h/2, h]); with
+      // `parent`, h the smaller of the centre's and the parent's centre's (a corner of this cube):
+      // where h dips across a cube (a thin layer whose size is smallest at its faces) the centre
+      // alone chose a spacing above the size at the corners, and the mixed levels left edges up to
+      // 1.63 h (the FinFET's gate oxide: 4,656 edges above 1.5 h, none with it; docs/benchmarks.md,
+      // thirty-eighth part). The value is there already: no query more.
+      if (d > stretch * (parent ? std::min(hc, hp) : hc) && level < max_level) {
         for (unsigned m = 0; m < (1u << D); ++m) {
           std::array<std::int64_t, D> j;
           for (std::size_t k = 0; k < D; ++k) j[k] = 2 * i[k] + ((m >> k) & 1u);
-          self(self, j, level + 1);
+          self(self, j, level + 1, hc);
         }
         return;
       }
@@ -120,7 +129,7 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
         }
       }
     };
-    visit(visit, i0, 0);
+    visit(visit, i0, 0, unbounded);
   }, [&](std::size_t) { return 1.0; });
   std::vector<candidate<D>> all;
   {
@@ -142,7 +151,10 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
   all.erase(std::unique(all.begin(), all.end(), [](const candidate<D>& x, const candidate<D>& y) { return x.q == y.q; }), all.end());
   std::sort(all.begin(), all.end(), first);
   // classification in parallel: inside a segment and clear of the boundary by half the spacing
+  // (1); or, where h at the cube's centre is at least `band_from`, too near a face but the point
+  // moved off it is (2, the point in `moved`)
   std::vector<char> ok(all.size(), 0);
+  std::vector<point<D>> moved(where.away ? all.size() : 0);
   constexpr std::size_t chunk = 1024;
   std::vector<std::size_t> chunks((all.size() + chunk - 1) / chunk);
   std::iota(chunks.begin(), chunks.end(), std::size_t{0});
@@ -150,48 +162,62 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
     for (std::size_t k = c * chunk; k < std::min(all.size(), (c + 1) * chunk); ++k) {
       const auto& x = all[k];
       const double d = std::ldexp(d0, -x.level);
-      ok[k] = where.segment_of(x.q) != no_segment && where.clear(x.q, 0.5 * d);
+      if (where.segment_of(x.q) == no_segment) continue;
+      if (where.clear(x.q, 0.5 * d)) {
+        ok[k] = 1;
+      } else if (where.away && std::isfinite(band_from) && x.h >= band_from) {
+        const auto m = where.away(x.q, 0.5 * d, band_lift * d);
+        if (m && where.clear(*m, 0.5 * d) && where.segment_of(*m) != no_segment) ok[k] = 2, moved[k] = *m;
+      }
     }
   }, [&](std::size_t) { return 1.0; });
   // greedy, sequential: one hash grid per level with its spacing as cell
   std::vector<std::unique_ptr<hash_grid<D>>> grids(max_level + 1);
   std::vector<point<D>> out;
-  std::vector<int> level_of;
   int deepest = 0;
   for (const auto& x : all) deepest = std::max(deepest, x.level);
-  for (std::size_t k = 0; k < all.size(); ++k) {
-    if (!ok[k]) continue;
-    const auto& x = all[k];
+  // whether q (a candidate's point or its band point) is at least max(0.8 of the smaller spacing,
+  // hf * h) from every point taken, h the size at the candidate's cube's centre
+  auto free_of = [&](const point<D>& q, const candidate<D>& x, double hf) {
     bool free = true;
     for (int j = 0; j <= deepest && free; ++j) {
       if (!grids[static_cast<std::size_t>(j)]) continue;
-      // 0.8 of the smaller spacing, and at least 0.55 h in 3D, 0.5 h in 2D (h: the size at the
-      // candidate's cube's centre): the spacing alone let a finer level's points crowd a coarser
-      // one's, edges below h/2 (11-13% of the edges on the rotated MOSFET and FinFET graded from
-      // the feature size); 0.6 h in 3D and 0.55 h in 2D began to leave holes (edges above 1.5 h),
-      // docs/benchmarks.md thirty-seventh part
-      const double r = std::max(0.8 * std::ldexp(d0, -std::max(j, x.level)), (D == 3 ? 0.55 : 0.5) * x.h);
+      const double r = std::max(0.8 * std::ldexp(d0, -std::max(j, x.level)), hf * x.h);
       point<D> lo, hi;
-      for (std::size_t a = 0; a < D; ++a) lo[a] = x.q[a] - r, hi[a] = x.q[a] + r;
+      for (std::size_t a = 0; a < D; ++a) lo[a] = q[a] - r, hi[a] = q[a] + r;
       grids[static_cast<std::size_t>(j)]->visit(lo, hi, [&](std::uint32_t p) {
-        if (squared_distance(out[p], x.q) < r * r) free = false;
+        if (squared_distance(out[p], q) < r * r) free = false;
         return free;
       });
     }
-    if (!free) continue;
-    auto& g = grids[static_cast<std::size_t>(x.level)];
-    if (!g) g = std::make_unique<hash_grid<D>>(origin, std::ldexp(d0, -x.level));
-    g->insert(static_cast<std::uint32_t>(out.size()), x.q);
-    out.push_back(x.q);
+    return free;
+  };
+  auto take = [&](const point<D>& q, int level) {
+    auto& g = grids[static_cast<std::size_t>(level)];
+    if (!g) g = std::make_unique<hash_grid<D>>(origin, std::ldexp(d0, -level));
+    g->insert(static_cast<std::uint32_t>(out.size()), q);
+    out.push_back(q);
+  };
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    // 0.8 of the smaller spacing, and at least 0.55 h in 3D, 0.5 h in 2D: the spacing alone let
+    // a finer level's points crowd a coarser one's, edges below h/2 (11-13% of the edges on the
+    // rotated MOSFET and FinFET graded from the feature size); 0.6 h in 3D and 0.55 h in 2D began
+    // to leave holes (edges above 1.5 h), docs/benchmarks.md thirty-seventh part
+    if (ok[k] == 1 && free_of(all[k].q, all[k], D == 3 ? 0.55 : 0.5)) take(all[k].q, all[k].level);
   }
+  // the band next to the boundary where h is the global size (modules/placement/README.md, step 4,
+  // as the uniform lattice): a candidate dropped as too near a face, moved `band_lift` d off it,
+  // taken in candidate order when clear, in a segment and band_gap h from every point taken
+  for (std::size_t k = 0; k < all.size(); ++k)
+    if (ok[k] == 2 && free_of(moved[k], all[k], band_gap)) take(moved[k], all[k].level);
   return out;
 }
 
 template std::vector<point2> place_points<2>(const size_field<2>&, const aabb<2>&, const placement<2>&, unsigned);
 template std::vector<point2> place_points<2>(const std::function<double(const point2&, int)>&, double, const aabb<2>&,
-                                             const placement<2>&, unsigned, double);
+                                             const placement<2>&, unsigned, double, bool, double);
 template std::vector<point3> place_points<3>(const std::function<double(const point3&, int)>&, double, const aabb<3>&,
-                                             const placement<3>&, unsigned, double);
+                                             const placement<3>&, unsigned, double, bool, double);
 template std::vector<point3> place_points<3>(const size_field<3>&, const aabb<3>&, const placement<3>&, unsigned);
 
 }  // namespace gsse::sizing

@@ -2,7 +2,9 @@
 // Interior points for a size field: a dyadic hierarchy of lattices (BCC in 3D: cube corners and
 // centres, nearest-neighbour distance d; triangular in 2D, which nests as BCC does: the lattice
 // of spacing d/2 holds that of d), each cube at the coarsest level
-// whose spacing d is at most h at its centre (spacings in (h/2, h], BCC edges up to 1.15 h; a
+// whose spacing d is at most h at its centre and at its parent cube's centre (one of its corners:
+// where h dips across a cube, the centre alone left edges up to 1.63 h) (spacings in (h/2, h],
+// BCC edges up to 1.15 h; a
 // stretch of 1.2 made the edges next to the boundary reach 1.9 h), so where h is one number
 // (and d0 is it) the points are the BCC
 // lattice of that spacing and where it varies the spacing follows it in steps of two. Candidates
@@ -11,9 +13,13 @@
 // lattice plane are exactly coplanar) are then taken greedily, coarse levels first, dropping a point that lies in no segment,
 // nearer than half its spacing to the boundary, or nearer to a point already taken than 0.8 of the
 // smaller spacing or 0.55 h at its cube's centre (2D 0.5 h: without it a finer level's points
-// crowded a coarser one's, edges below h/2). The classification is parallel; the greedy pass is sequential, in a fixed
+// crowded a coarser one's, edges below h/2). Where h is the global size, a candidate nearer than
+// half its spacing to the boundary is moved 0.6 d off its nearest face instead and taken after all
+// the others when clear, in a segment and 0.65 h from every point taken (the uniform lattice's
+// band, modules/placement/README.md step 4). The classification is parallel; the greedy pass is sequential, in a fixed
 // order, so the points are the same for any thread count.
 #include <functional>
+#include <optional>
 #include <limits>
 #include <vector>
 
@@ -29,6 +35,9 @@ struct placement {
   std::function<int(const point<D>&)> segment_of;
   /// True if q is at least `keep` from every boundary face.
   std::function<bool(const point<D>&, double keep)> clear;
+  /// Optional: q moved to `lift` off its nearest face (from the closest point of it, through q)
+  /// if a face lies within `keep` of q; nothing otherwise.
+  std::function<std::optional<point<D>>(const point<D>&, double keep, double lift)> away;
 };
 
 template <std::size_t D>
@@ -37,9 +46,14 @@ std::vector<point<D>> place_points(const size_field<D>& h, const aabb<D>& box, c
 
 /// The same for any size function h(x, segment) (segment: no_segment where unknown); `d0` is the
 /// coarsest spacing (the largest size that matters). The conformer seeds graded facets with it in
-/// each facet's plane.
+/// each facet's plane. `parent`: a cube's spacing also at most stretch * h at its parent cube's
+/// centre (one of its corners), as the size field's placement asks; off, h at its centre alone.
+/// `band_from`: a candidate too near a face whose cube's size is at least this (the size field's
+/// placement: its global size, where h is flat) is moved off the face (`placement::away`) and
+/// taken when clear, as the uniform lattice's band (modules/placement/README.md, step 4).
 template <std::size_t D>
 std::vector<point<D>> place_points(const std::function<double(const point<D>&, int)>& h, double d0, const aabb<D>& box,
-                                   const placement<D>& where, unsigned threads = 1, double stretch = 1.0);
+                                   const placement<D>& where, unsigned threads = 1, double stretch = 1.0,
+                                   bool parent = false, double band_from = unbounded);
 
 }  // namespace gsse::sizing
