@@ -154,7 +154,8 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
   // (1); or, where h at the cube's centre is at least `band_from`, too near a face but the point
   // moved off it is (2, the point in `moved`)
   std::vector<char> ok(all.size(), 0);
-  std::vector<point<D>> moved(where.away ? all.size() : 0);
+  const bool band = where.away && std::isfinite(band_from);
+  std::vector<point<D>> moved(band ? all.size() : 0);
   constexpr std::size_t chunk = 1024;
   std::vector<std::size_t> chunks((all.size() + chunk - 1) / chunk);
   std::iota(chunks.begin(), chunks.end(), std::size_t{0});
@@ -165,7 +166,7 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
       if (where.segment_of(x.q) == no_segment) continue;
       if (where.clear(x.q, 0.5 * d)) {
         ok[k] = 1;
-      } else if (where.away && std::isfinite(band_from) && x.h >= band_from) {
+      } else if (band && x.h >= band_from) {
         const auto m = where.away(x.q, 0.5 * d, band_lift * d);
         if (m && where.clear(*m, 0.5 * d) && where.segment_of(*m) != no_segment) ok[k] = 2, moved[k] = *m;
       }
