@@ -98,8 +98,10 @@ pl::options quality_options(double bound, unsigned threads, double size = 0) {
 }
 
 template <std::size_t D>
-domain<D> refined(const plc<D>& p, double bound, unsigned threads, pl::report& r, double size = 0) {
-  auto d = pl::mesh(p, {}, quality_options(bound, threads, size), r);
+domain<D> refined(const plc<D>& p, double bound, unsigned threads, pl::report& r, double size = 0, bool size_fit = false) {
+  auto o = quality_options(bound, threads, size);
+  o.size_fit = size_fit;
+  auto d = pl::mesh(p, {}, o, r);
   BOOST_TEST(r.problems.empty(), p.source << ": " << (r.problems.empty() ? "" : r.problems.front()));
   return d;
 }
@@ -775,10 +777,7 @@ BOOST_AUTO_TEST_CASE(bench_structures_refined) {
     // alone, up to 1.63 h in the oxide; docs/benchmarks.md, thirty-eighth part)
     const auto p = std::get<plc<3>>(io::read_plc(gsse::test::bench_structure(*shared, "finfet", 3)));
     pl::report r;
-    auto o = quality_options(1.414, 2, 0);
-    o.size_fit = true;
-    const auto d = pl::mesh(p, {}, o, r);
-    BOOST_TEST(r.problems.empty(), p.source << ": " << (r.problems.empty() ? "" : r.problems.front()));
+    const auto d = refined(p, 1.414, 2, r, 0, true);
     BOOST_TEST_REQUIRE(r.size_measured);
     BOOST_TEST(r.size_fit.above == 0u, "finfet graded: " << r.size_fit.above << " edges above 1.5 h, the longest " << r.size_fit.max_ratio);
     BOOST_TEST(!r.uniform_size);

@@ -637,7 +637,7 @@ BOOST_AUTO_TEST_CASE(graded_points_keep_half_the_size_apart) {
 // (modules/placement/README.md, step 4). Without it the gap to the boundary left 401 edges above
 // 1.5 h (up to 1.66 h) on the axis-aligned stack, now none; on the turned one 401 (up to 1.71 h),
 // now 167 (1.67 h): the band's points follow the faces, the turned lattice's other gaps stay
-// (docs/benchmarks.md, thirty-eighth part). Edges below half: 1.0% and 2.9%, the same as without.
+// (docs/benchmarks.md, thirty-eighth part). Edges below half: 1.0% and 2.8%, as without (1.0% and 2.9%).
 BOOST_AUTO_TEST_CASE(graded_band_next_to_the_boundary) {
   for (bool rotated : {false, true}) {
     const char* what = rotated ? "turned stack" : "stack";

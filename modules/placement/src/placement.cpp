@@ -350,7 +350,7 @@ std::vector<point<D>> lattice_points(const surface<D>& b, const location::locato
       // so far. Chosen on the 8 benchmark structures (docs/benchmarks.md part 36): lift 0.6 h and
       // gap 0.65 h left 0-25 edges above 1.5 h of about 1.1e5 (160-2,131 before), points +3-12%;
       // a gap of 0.7 h left up to 90, a lift of 0.7 h up to 400.
-      const double gap = 0.65 * h, lift = 0.6 * h;
+      const double gap = sizing::band_gap * h, lift = sizing::band_lift * h;
       // the lattice indices within r of x along axis k (3D corners at shift 0, centres at 1/2; 2D
       // along x the row's shift, along y the rows)
       auto range = [&](double x, std::size_t k, double shift, double r) {

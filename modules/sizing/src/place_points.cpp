@@ -21,8 +21,6 @@ struct candidate {
 };
 
 constexpr int max_level = 40;
-// the band (the uniform lattice's lift and gap, modules/placement/README.md step 4)
-constexpr double band_lift = 0.6, band_gap = 0.65;
 
 }  // namespace
 

@@ -29,6 +29,11 @@ namespace gsse::sizing {
 
 inline constexpr int no_segment = std::numeric_limits<int>::min();
 
+/// The band next to the boundary (modules/placement/README.md, step 4), for the uniform lattice
+/// and the graded points alike: a point dropped as too near a face is moved `band_lift` times the
+/// spacing off it, and taken when `band_gap` times the size from every point taken.
+inline constexpr double band_lift = 0.6, band_gap = 0.65;
+
 template <std::size_t D>
 struct placement {
   /// Segment number containing q, or no_segment (outside every segment, in a hole).
