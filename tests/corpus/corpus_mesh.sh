@@ -12,7 +12,8 @@
 # usage: corpus_mesh.sh GSSE_MESH SOURCE_DIR [NAME...]
 #   GSSE_CORPUS_TIMEOUT seconds per run (default 60, with a quality bound 120), GSSE_CORPUS_JOBS
 #   cases at once (default 2), GSSE_CORPUS_WORK keeps the inputs, meshes and logs in that folder
-#   (default: a temporary one)
+#   (default: a temporary one), GSSE_CORPUS_CASES="NAME..." the cases to run when none are named
+#   (scripts/test-sanitizers.sh runs a sample: the sanitizers cost 3-5x)
 # Inputs with elements excepted at small input angles that must still have no dihedral angle
 # below 5 or above 170 degrees at --quality B (without a grade): slivers within the radius-edge
 # bound are refined near the guards too (gmsh_t5 had 16, gmsh_thrusections 4 until 2026-11-29;
@@ -38,6 +39,8 @@ SLOW_GRADED_QUALITY=$(echo $SLOW_GRADED_QUALITY)
 #     gmsh_indheat, scad_example023, scad_sign (10-46 s each).
 set -uo pipefail
 MESH=$1; src=$2; shift 2
+# shellcheck disable=SC2086
+[ $# = 0 ] && [ -n "${GSSE_CORPUS_CASES:-}" ] && set -- $GSSE_CORPUS_CASES
 here=$src/tests/corpus
 # shellcheck source=corpus_lib.sh
 source "$here/corpus_lib.sh"
@@ -59,6 +62,7 @@ while IFS=$'\t' read -r name file _; do
   names+=("$name"); files+=("$file")
 done < "$here/MANIFEST.tsv"
 [ ${#names[@]} -gt 0 ] || { echo "FAIL: no corpus cases"; exit 1; }
+for n in "$@"; do [[ " ${names[*]} " == *" $n "* ]] || { echo "FAIL: no corpus case named $n"; exit 1; }; done
 mkdir -p "$WORK/inputs"
 t0=$(date +%s.%N)
 for k in "${!names[@]}"; do
