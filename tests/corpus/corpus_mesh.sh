@@ -13,7 +13,7 @@
 #   GSSE_CORPUS_TIMEOUT seconds per run (default 60, with a quality bound 120), GSSE_CORPUS_JOBS
 #   cases at once (default 2), GSSE_CORPUS_WORK keeps the inputs, meshes and logs in that folder
 #   (default: a temporary one), GSSE_CORPUS_CASES="NAME..." the cases to run when none are named
-#   (scripts/test-sanitizers.sh runs a sample: the sanitizers cost 3-5x)
+#   (scripts/test-sanitizers.sh runs a sample: the sanitizers cost 4-9x)
 # Inputs with elements excepted at small input angles that must still have no dihedral angle
 # below 5 or above 170 degrees at --quality B (without a grade): slivers within the radius-edge
 # bound are refined near the guards too (gmsh_t5 had 16, gmsh_thrusections 4 until 2026-11-29;
