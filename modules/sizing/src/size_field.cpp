@@ -127,19 +127,39 @@ void split(const simplex_pts<D>& s, std::vector<simplex_pts<D>>& out) {
 
 template <std::size_t D>
 struct field_builder {
+  // keep: build the field; else only count the pieces against the budget (check_feature_size)
   static size_field<D> run(const boundary_view<D>& b, const spec<D>& s, unsigned threads,
-                           const std::function<void(std::size_t, std::size_t)>& progress);
+                           const std::function<void(std::size_t, std::size_t)>& progress, bool keep = true);
 };
 
 template <std::size_t D>
 size_field<D> build(const boundary_view<D>& b, const spec<D>& s, unsigned threads,
                     const std::function<void(std::size_t, std::size_t)>& progress) {
+  if (s.held_pieces >= s.max_pieces) return field_builder<D>::run(b, s, threads, progress);
+  // held to a smaller budget first: features far below the model's size (a 5e-6 layer) fill any
+  // budget, and held pieces cost 80 bytes each (1.6 GB at 2e7) before the verdict. Over it, the
+  // pieces are counted against the real budget without being held, and only if they fit is the
+  // field built again in full (an input that large pays the field three times over)
+  spec<D> first = s;
+  first.max_pieces = s.held_pieces;
+  try {
+    return field_builder<D>::run(b, first, threads, progress);
+  } catch (const too_fine&) {
+    field_builder<D>::run(b, s, threads, progress, false);  // throws too_fine over the real budget
+  }
   return field_builder<D>::run(b, s, threads, progress);
 }
 
 template <std::size_t D>
+void check_feature_size(const boundary_view<D>& b, std::size_t max_pieces, unsigned threads) {
+  spec<D> s;  // the local feature size alone
+  s.max_pieces = max_pieces;
+  field_builder<D>::run(b, s, threads, {}, false);
+}
+
+template <std::size_t D>
 size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s, unsigned threads,
-                                    const std::function<void(std::size_t, std::size_t)>& progress) {
+                                    const std::function<void(std::size_t, std::size_t)>& progress, bool keep) {
   if (!(s.grade > 1)) throw std::invalid_argument("the grade must be above 1");
   size_field<D> f;
   f.slope_ = f.max_slope_ = s.grade - 1;
@@ -241,95 +261,140 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
   for_each(execution::par(threads), ids, [&](std::size_t k) {
     const double fixed = side_value(k);
     const std::uint32_t src = k < b.face_source.size() ? b.face_source[k] : 0;
-    std::vector<simplex_pts<D>> todo{face_pts(k)}, next;
-    // per piece, the face across its parent found nearest (none for the face itself): a child's
+    // Per piece, the face across its parent found nearest (none for the face itself): a child's
     // nearest face across is mostly its parent's, and its distance, taken first, bounds the search
     // from the start (the minimum found is the same up to rounding: the hint is one of the faces
     // the search would qualify, at the same distance, but a face whose closest point rounds an ulp
     // outside its box may be pruned in one visiting order and not another)
     constexpr std::uint32_t no_hint = std::numeric_limits<std::uint32_t>::max();
-    std::vector<std::uint32_t> todo_hint{no_hint}, next_hint;
-    auto& out = pieces[k];
-    while (!todo.empty() && !overflow.load(std::memory_order_relaxed)) {
-      next.clear();
-      next_hint.clear();
-      const std::size_t kept_before = out.size();  // the pieces kept at earlier levels, counted then
-      for (std::size_t t = 0; t < todo.size(); ++t) {
-        const auto& piece = todo[t];
-        std::uint32_t found_face = no_hint;
-        const point<D> c = centroid<D>(piece);
-        point<D> normal;
-        if constexpr (D == 2)
-          normal = {piece[0][1] - piece[1][1], piece[1][0] - piece[0][0]};
-        else
-          normal = cross(piece[1] - piece[0], piece[2] - piece[0]);
-        const double nn = dot(normal, normal);
-        double r = 0;
-        for (const auto& q : piece) r = std::max(r, std::sqrt(squared_distance(q, c)));
-        double v = fixed;
-        if (s.feature_size) {
-          // nearest face of a source this one does not touch, searched no farther than where the
-          // term could still beat the other terms
-          const double cap = std::min(v, f.global_);
-          double best2 = std::isfinite(cap) ? std::pow(cap / s.feature_factor + r, 2) : unbounded;
-          double found2 = unbounded;
-          // a face across qualifies if its nearest point lies at least 30 degrees out of this
-          // piece's plane (a layer's other side, a gap's other wall), not beside it (the
-          // next-but-one facet of a tessellated curved surface)
-          auto consider = [&](std::uint32_t g) {
-            const point<D> q = face_closest<D>(face_pts(g), c), w = q - c;
-            const double d2 = dot(w, w), across = dot(w, normal);
-            if (d2 < std::min(found2, best2) && across * across >= 0.25 * d2 * nn) found2 = d2, found_face = g;
-          };
-          if (todo_hint[t] != no_hint) consider(todo_hint[t]);  // the parent's: not incident either
-          // a box whose every point x has |(x - c).n| below 0.49 |x - c| holds no nearest point
-          // 30 degrees or more out of this piece's plane (the test below asks 0.5): skipped
-          // whole. Without it a curved surface tessellated finely, with nothing across it near
-          // (no --size to bound the search), had every piece read every face beside it:
-          // occ_chair, occ_hammer, scad_csg, scad_example021 with --grade alone spent minutes
-          // here. Only boxes that cannot qualify go: the field is the same
-          const double nlen = std::sqrt(nn);
-          auto sideways = [&](const aabb<D>& bx) {
-            if (!(nlen > 0)) return false;
-            double mid = 0, spread = 0;
-            for (std::size_t j = 0; j < D; ++j) {
-              const double nj = normal[j] / nlen;
-              mid += (0.5 * (bx.lo[j] + bx.hi[j]) - c[j]) * nj;
-              spread += std::abs(nj) * 0.5 * (bx.hi[j] - bx.lo[j]);
-            }
-            const double most = std::abs(mid) + spread;
-            return most * most < 0.49 * 0.49 * bx.distance2(c);
-          };
-          // nearer boxes first: a face across found early bounds the rest of the search
-          ftree.visit_near(c, [&](const aabb<D>& bx) { return bx.distance2(c) < std::min(best2, found2) && !sideways(bx); },
-                      [&](std::uint32_t g) {
-                        const std::uint32_t gs = g < b.face_source.size() ? b.face_source[g] : 0;
-                        if (!(gs < nsrc && src < nsrc && incident(src, gs))) consider(g);
-                        return true;
-                      });
-          if (std::isfinite(found2)) v = std::min(v, s.feature_factor * std::max(0.0, std::sqrt(found2) - r));
-          if (found2 < closest[k].d2) closest[k] = {found2, c, found_face};
-        }
-        if (!(v < f.global_)) continue;  // does not bind anywhere the global size does not
-        if (r > std::max(v, floor)) {
-          split<D>(piece, next);
-          next_hint.resize(next.size(), found_face);
-          // over the budget already (the other faces' levels done, and this face's so far): stop
-          // now, not after the level (a 5e-6 layer's face had grown a level of 16 million pieces
-          // before the check, 6 GB). Only when the sum at the end would be over it too
-          if (next.size() % 65536 == 0 && total.load(std::memory_order_relaxed) + out.size() - kept_before + next.size() > max_sources) {
-            overflow = true;
-            break;
+    // a piece's value (infinite: it binds nowhere the global size does not, dropped), its radius
+    // about its centroid, and the face across it found nearest (its children's hint)
+    struct evaluation {
+      double v, r;
+      std::uint32_t found_face;
+    };
+    auto evaluate = [&](const simplex_pts<D>& piece, std::uint32_t hint) {
+      std::uint32_t found_face = no_hint;
+      const point<D> c = centroid<D>(piece);
+      point<D> normal;
+      if constexpr (D == 2)
+        normal = {piece[0][1] - piece[1][1], piece[1][0] - piece[0][0]};
+      else
+        normal = cross(piece[1] - piece[0], piece[2] - piece[0]);
+      const double nn = dot(normal, normal);
+      double r = 0;
+      for (const auto& q : piece) r = std::max(r, std::sqrt(squared_distance(q, c)));
+      double v = fixed;
+      if (s.feature_size) {
+        // nearest face of a source this one does not touch, searched no farther than where the
+        // term could still beat the other terms
+        const double cap = std::min(v, f.global_);
+        double best2 = std::isfinite(cap) ? std::pow(cap / s.feature_factor + r, 2) : unbounded;
+        double found2 = unbounded;
+        // a face across qualifies if its nearest point lies at least 30 degrees out of this
+        // piece's plane (a layer's other side, a gap's other wall), not beside it (the
+        // next-but-one facet of a tessellated curved surface)
+        auto consider = [&](std::uint32_t g) {
+          const point<D> q = face_closest<D>(face_pts(g), c), w = q - c;
+          const double d2 = dot(w, w), across = dot(w, normal);
+          if (d2 < std::min(found2, best2) && across * across >= 0.25 * d2 * nn) found2 = d2, found_face = g;
+        };
+        if (hint != no_hint) consider(hint);  // the parent's: not incident either
+        // a box whose every point x has |(x - c).n| below 0.49 |x - c| holds no nearest point
+        // 30 degrees or more out of this piece's plane (the test below asks 0.5): skipped
+        // whole. Without it a curved surface tessellated finely, with nothing across it near
+        // (no --size to bound the search), had every piece read every face beside it:
+        // occ_chair, occ_hammer, scad_csg, scad_example021 with --grade alone spent minutes
+        // here. Only boxes that cannot qualify go: the field is the same
+        const double nlen = std::sqrt(nn);
+        auto sideways = [&](const aabb<D>& bx) {
+          if (!(nlen > 0)) return false;
+          double mid = 0, spread = 0;
+          for (std::size_t j = 0; j < D; ++j) {
+            const double nj = normal[j] / nlen;
+            mid += (0.5 * (bx.lo[j] + bx.hi[j]) - c[j]) * nj;
+            spread += std::abs(nj) * 0.5 * (bx.hi[j] - bx.lo[j]);
           }
-          continue;
-        }
-        out.push_back({piece, std::max(v, floor)});
+          const double most = std::abs(mid) + spread;
+          return most * most < 0.49 * 0.49 * bx.distance2(c);
+        };
+        // nearer boxes first: a face across found early bounds the rest of the search
+        ftree.visit_near(c, [&](const aabb<D>& bx) { return bx.distance2(c) < std::min(best2, found2) && !sideways(bx); },
+                    [&](std::uint32_t g) {
+                      const std::uint32_t gs = g < b.face_source.size() ? b.face_source[g] : 0;
+                      if (!(gs < nsrc && src < nsrc && incident(src, gs))) consider(g);
+                      return true;
+                    });
+        if (std::isfinite(found2)) v = std::min(v, s.feature_factor * std::max(0.0, std::sqrt(found2) - r));
+        if (found2 < closest[k].d2) closest[k] = {found2, c, found_face};
       }
-      // this level's pieces: those kept at it and those cut for the next (each piece counted once)
-      const std::size_t level = out.size() - kept_before + next.size();
-      if (total.fetch_add(level, std::memory_order_relaxed) + level > max_sources) overflow = true;
-      std::swap(todo, next);
-      std::swap(todo_hint, next_hint);
+      if (!(v < f.global_)) v = unbounded;  // does not bind anywhere the global size does not
+      return evaluation{v, r, found_face};
+    };
+    auto cut = [&](const evaluation& x) { return std::isfinite(x.v) && x.r > std::max(x.v, floor); };
+    if (keep) {
+      // a level at a time (the pieces in the order the field has always had them)
+      std::vector<simplex_pts<D>> todo{face_pts(k)}, next;
+      std::vector<std::uint32_t> todo_hint{no_hint}, next_hint;
+      auto& out = pieces[k];
+      while (!todo.empty() && !overflow.load(std::memory_order_relaxed)) {
+        next.clear();
+        next_hint.clear();
+        const std::size_t kept_before = out.size();  // the pieces kept at earlier levels, counted then
+        for (std::size_t t = 0; t < todo.size(); ++t) {
+          const auto& piece = todo[t];
+          const evaluation x = evaluate(piece, todo_hint[t]);
+          if (!std::isfinite(x.v)) continue;
+          if (cut(x)) {
+            split<D>(piece, next);
+            next_hint.resize(next.size(), x.found_face);
+            // over the budget already (the other faces' levels done, and this face's so far): stop
+            // now, not after the level (a 5e-6 layer's face had grown a level of 16 million pieces
+            // before the check, 6 GB). Only when the sum at the end would be over it too
+            if (next.size() % 65536 == 0 && total.load(std::memory_order_relaxed) + out.size() - kept_before + next.size() > max_sources) {
+              overflow = true;
+              break;
+            }
+            continue;
+          }
+          out.push_back({piece, std::max(x.v, floor)});
+        }
+        // this level's pieces: those kept at it and those cut for the next
+        const std::size_t level = out.size() - kept_before + next.size();
+        if (total.fetch_add(level, std::memory_order_relaxed) + level > max_sources) overflow = true;
+        std::swap(todo, next);
+        std::swap(todo_hint, next_hint);
+      }
+    } else {
+      // only counted: depth first, on a stack of a few pieces a level, where a level at a time
+      // holds the widest level (16 million pieces on a face of a 5e-6 layer). The same count,
+      // added to the total in batches: a piece kept counts one, a piece cut its children, as at
+      // the levels' ends above, so the verdict (the total over the budget) is the same
+      std::vector<simplex_pts<D>> stack{face_pts(k)};
+      std::vector<std::uint32_t> hints{no_hint};
+      std::size_t counted = 0;
+      auto flush = [&] {
+        if (total.fetch_add(counted, std::memory_order_relaxed) + counted > max_sources) overflow = true;
+        counted = 0;
+      };
+      while (!stack.empty() && !overflow.load(std::memory_order_relaxed)) {
+        const simplex_pts<D> piece = stack.back();
+        const std::uint32_t hint = hints.back();
+        stack.pop_back();
+        hints.pop_back();
+        const evaluation x = evaluate(piece, hint);
+        if (!std::isfinite(x.v)) continue;
+        if (cut(x)) {
+          const std::size_t before = stack.size();
+          split<D>(piece, stack);
+          hints.resize(stack.size(), x.found_face);
+          counted += stack.size() - before;
+        } else {
+          ++counted;
+        }
+        if (counted >= 4096) flush();
+      }
+      flush();
     }
     // progress: faces finished, every 4096th (at the end of the body, not from a destructor: a
     // callback that throws propagates like any other failure of the body)
@@ -365,6 +430,7 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
                        ": thicken or remove them, or leave the local feature size out (--no-feature-size) and give sizes",
                    closest_found);
   }
+  if (!keep) return f;
   std::vector<aabb<D>> boxes;
   std::vector<double> values;
   for (const auto& v : pieces)
@@ -441,5 +507,7 @@ template size_field<2> build<2>(const boundary_view<2>&, const spec<2>&, unsigne
                                 const std::function<void(std::size_t, std::size_t)>&);
 template size_field<3> build<3>(const boundary_view<3>&, const spec<3>&, unsigned,
                                 const std::function<void(std::size_t, std::size_t)>&);
+template void check_feature_size<2>(const boundary_view<2>&, std::size_t, unsigned);
+template void check_feature_size<3>(const boundary_view<3>&, std::size_t, unsigned);
 
 }  // namespace gsse::sizing

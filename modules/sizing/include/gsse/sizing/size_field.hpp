@@ -68,9 +68,13 @@ struct spec {
     std::string source;
   };
   std::shared_ptr<const background_mesh> background;  // sidecar "background" (.node/.ele + .mtr)
-  // the boundary pieces the field may cut the faces into (each counted at the level it is made) before `build`
+  // the boundary pieces the field may cut the faces into (a piece kept counts one, a piece cut its children) before `build`
   // gives up: features far below the model's size (a 1e-8 layer) would need far more
   std::size_t max_pieces = 20'000'000;
+  // the pieces `build` holds before it goes on counting them without holding them (an input over
+  // this and within max_pieces has its field built twice more; the largest benchmark structure
+  // and corpus fields hold up to 0.8 million)
+  std::size_t held_pieces = 2'000'000;
 };
 
 /// The maximum size of a .poly region's maximum volume (3D) or area (2D): the edge of the regular
@@ -151,5 +155,12 @@ struct too_fine : std::runtime_error {
 template <std::size_t D>
 size_field<D> build(const boundary_view<D>& b, const spec<D>& s, unsigned threads = 1,
                     const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+/// Throws too_fine exactly when `build` of the local feature size alone (spec defaults but
+/// `max_pieces`) would, and keeps nothing: the pieces are counted, not stored (memory: a short
+/// stack per face, where build holds every piece). For a verdict without the field: can the
+/// input's features be met at all (the quality refinement asks when its bad elements keep growing).
+template <std::size_t D>
+void check_feature_size(const boundary_view<D>& b, std::size_t max_pieces, unsigned threads = 1);
 
 }  // namespace gsse::sizing
