@@ -135,18 +135,6 @@ struct field_builder {
 template <std::size_t D>
 size_field<D> build(const boundary_view<D>& b, const spec<D>& s, unsigned threads,
                     const std::function<void(std::size_t, std::size_t)>& progress) {
-  if (s.held_pieces >= s.max_pieces) return field_builder<D>::run(b, s, threads, progress);
-  // held to a smaller budget first: features far below the model's size (a 5e-6 layer) fill any
-  // budget, and held pieces cost 80 bytes each (1.6 GB at 2e7) before the verdict. Over it, the
-  // pieces are counted against the real budget without being held, and only if they fit is the
-  // field built again in full (an input that large pays the field three times over)
-  spec<D> first = s;
-  first.max_pieces = s.held_pieces;
-  try {
-    return field_builder<D>::run(b, first, threads, progress);
-  } catch (const too_fine&) {
-    field_builder<D>::run(b, s, threads, progress, false);  // throws too_fine over the real budget
-  }
   return field_builder<D>::run(b, s, threads, progress);
 }
 

@@ -71,10 +71,6 @@ struct spec {
   // the boundary pieces the field may cut the faces into (a piece kept counts one, a piece cut its children) before `build`
   // gives up: features far below the model's size (a 1e-8 layer) would need far more
   std::size_t max_pieces = 20'000'000;
-  // the pieces `build` holds before it goes on counting them without holding them (an input over
-  // this and within max_pieces has its field built twice more; the largest benchmark structure
-  // and corpus fields hold up to 0.8 million)
-  std::size_t held_pieces = 2'000'000;
 };
 
 /// The maximum size of a .poly region's maximum volume (3D) or area (2D): the edge of the regular
