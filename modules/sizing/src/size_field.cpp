@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "gsse/sizing/distance.hpp"
 #include "gsse/traversal/for_each.hpp"
@@ -320,51 +321,14 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
       return evaluation{v, r, found_face};
     };
     auto cut = [&](const evaluation& x) { return std::isfinite(x.v) && x.r > std::max(x.v, floor); };
-    if (keep) {
-      // a level at a time (the pieces in the order the field has always had them)
-      std::vector<simplex_pts<D>> todo{face_pts(k)}, next;
-      std::vector<std::uint32_t> todo_hint{no_hint}, next_hint;
-      auto& out = pieces[k];
-      while (!todo.empty() && !overflow.load(std::memory_order_relaxed)) {
-        next.clear();
-        next_hint.clear();
-        const std::size_t kept_before = out.size();  // the pieces kept at earlier levels, counted then
-        for (std::size_t t = 0; t < todo.size(); ++t) {
-          const auto& piece = todo[t];
-          const evaluation x = evaluate(piece, todo_hint[t]);
-          if (!std::isfinite(x.v)) continue;
-          if (cut(x)) {
-            split<D>(piece, next);
-            next_hint.resize(next.size(), x.found_face);
-            // over the budget already (the other faces' levels done, and this face's so far): stop
-            // now, not after the level (a 5e-6 layer's face had grown a level of 16 million pieces
-            // before the check, 6 GB). Only when the sum at the end would be over it too
-            if (next.size() % 65536 == 0 && total.load(std::memory_order_relaxed) + out.size() - kept_before + next.size() > max_sources) {
-              overflow = true;
-              break;
-            }
-            continue;
-          }
-          out.push_back({piece, std::max(x.v, floor)});
-        }
-        // this level's pieces: those kept at it and those cut for the next
-        const std::size_t level = out.size() - kept_before + next.size();
-        if (total.fetch_add(level, std::memory_order_relaxed) + level > max_sources) overflow = true;
-        std::swap(todo, next);
-        std::swap(todo_hint, next_hint);
-      }
-    } else {
-      // only counted: depth first, on a stack of a few pieces a level, where a level at a time
-      // holds the widest level (16 million pieces on a face of a 5e-6 layer). The same count,
-      // added to the total in batches: a piece kept counts one, a piece cut its children, as at
-      // the levels' ends above, so the verdict (the total over the budget) is the same
+    // this face's pieces counted depth first, on a stack of a few pieces a level (a level at a
+    // time holds the widest level: 16 million pieces on a face of a 5e-6 layer): a piece kept
+    // counts one, a piece cut its children, as at the levels' ends below. `report(n)` gets the
+    // count in batches and returns false to stop; the count so far is returned
+    auto count_face = [&](const auto& report) {
       std::vector<simplex_pts<D>> stack{face_pts(k)};
       std::vector<std::uint32_t> hints{no_hint};
-      std::size_t counted = 0;
-      auto flush = [&] {
-        if (total.fetch_add(counted, std::memory_order_relaxed) + counted > max_sources) overflow = true;
-        counted = 0;
-      };
+      std::size_t counted = 0, sum = 0;
       while (!stack.empty() && !overflow.load(std::memory_order_relaxed)) {
         const simplex_pts<D> piece = stack.back();
         const std::uint32_t hint = hints.back();
@@ -380,9 +344,85 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
         } else {
           ++counted;
         }
-        if (counted >= 4096) flush();
+        if (counted >= 4096) {
+          sum += counted;
+          if (!report(std::exchange(counted, 0))) return sum;
+        }
       }
-      flush();
+      sum += counted;
+      report(counted);
+      return sum;
+    };
+    if (keep) {
+      // a level at a time (the pieces in the order the field has always had them)
+      std::vector<simplex_pts<D>> todo{face_pts(k)}, next;
+      std::vector<std::uint32_t> todo_hint{no_hint}, next_hint;
+      auto& out = pieces[k];
+      std::size_t added = 0;  // this face's levels added to the total so far
+      bool claimed = false;   // this face's whole count added to the total ahead (below)
+      while (!todo.empty() && !overflow.load(std::memory_order_relaxed)) {
+        next.clear();
+        next_hint.clear();
+        const std::size_t kept_before = out.size();  // the pieces kept at earlier levels, counted then
+        for (std::size_t t = 0; t < todo.size(); ++t) {
+          const auto& piece = todo[t];
+          const evaluation x = evaluate(piece, todo_hint[t]);
+          if (!std::isfinite(x.v)) continue;
+          if (cut(x)) {
+            split<D>(piece, next);
+            next_hint.resize(next.size(), x.found_face);
+            // (the budget asked every 65536 pieces cut, when the other faces' progress is read;
+            // this face's own pieces held at every one)
+            const bool ask = next.size() % 65536 == 0;
+            if (!ask && (claimed || out.size() + next.size() < s.held_face)) continue;
+            // over the budget already (the other faces' levels done, and this face's so far): stop
+            // now, not after the level (a 5e-6 layer's face had grown a level of 16 million pieces
+            // before the check, 6 GB). Only when the sum at the end would be over it too
+            if (ask && !claimed && total.load(std::memory_order_relaxed) + out.size() - kept_before + next.size() > max_sources) {
+              overflow = true;
+              break;
+            }
+            // this face holding `held_face` pieces: its whole count first, depth first without
+            // holding any, added to the total at once. Over the budget: the error now, with this
+            // face's pieces held up to here (a thin layer's rejection held the whole budget, 1.57
+            // GB, before). Within it: the build goes on, its levels no longer added (the count
+            // was theirs). Faces that fit below `held_face`, all but a few on any input that
+            // fits, are never counted
+            if (!claimed && out.size() + next.size() >= s.held_face) {
+              claimed = true;
+              std::size_t whole = 0;
+              count_face([&](std::size_t n) {
+                whole += n;
+                if (total.load(std::memory_order_relaxed) - added + whole > max_sources) overflow = true;
+                return !overflow.load(std::memory_order_relaxed);
+              });
+              if (overflow.load(std::memory_order_relaxed)) break;
+              total.fetch_add(whole - added, std::memory_order_relaxed);
+              if (total.load(std::memory_order_relaxed) > max_sources) {
+                overflow = true;
+                break;
+              }
+            }
+            continue;
+          }
+          out.push_back({piece, std::max(x.v, floor)});
+        }
+        // this level's pieces: those kept at it and those cut for the next
+        const std::size_t level = out.size() - kept_before + next.size();
+        if (!claimed) {
+          added += level;
+          if (total.fetch_add(level, std::memory_order_relaxed) + level > max_sources) overflow = true;
+        }
+        std::swap(todo, next);
+        std::swap(todo_hint, next_hint);
+      }
+    } else {
+      // only counted (check_feature_size): the same count as the levels' ends above add, so the
+      // verdict (the total over the budget) is the same
+      count_face([&](std::size_t n) {
+        if (total.fetch_add(n, std::memory_order_relaxed) + n > max_sources) overflow = true;
+        return !overflow.load(std::memory_order_relaxed);
+      });
     }
     // progress: faces finished, every 4096th (at the end of the body, not from a destructor: a
     // callback that throws propagates like any other failure of the body)
