@@ -102,25 +102,27 @@ class simplicial_complex {
       for (std::size_t k = vstart_[v]; k < vstart_[v + 1]; ++k) {
         const cell_id c = vcells_[k];
         const auto& cell = cells_[c];
-        for (int i = 0; i <= static_cast<int>(D); ++i) {
-          if (cell[static_cast<std::size_t>(i)] == v) continue;  // facet i lacks v
+        // a facet is matched at its smallest vertex: v is the smallest of every facet on it when
+        // it is the cell's smallest, of the one facet without the only smaller vertex when it is
+        // the second smallest, else of none (half the cells of a star are skipped here, and the
+        // others give their facets without testing each)
+        std::size_t below = 0, smaller = 0;
+        for (std::size_t j = 0; j <= D; ++j)
+          if (cell[j] < v) ++below, smaller = j;
+        if (below > 1) continue;
+        for (std::size_t i = 0; i <= D; ++i) {
+          if (cell[i] == v || (below == 1 && i != smaller)) continue;  // facet i lacks v, or is matched lower
           std::array<vertex_id, D - 1> rest{};
           std::size_t m = 0;
-          bool lowest = true;
-          for (std::size_t j = 0; j <= D; ++j) {
-            const vertex_id w = cell[j];
-            if (static_cast<int>(j) == i || w == v) continue;
-            lowest = lowest && w > v;
-            rest[m++] = w;
-          }
-          if (!lowest) continue;  // matched at its smallest vertex
+          for (std::size_t j = 0; j <= D; ++j)
+            if (j != i && cell[j] != v) rest[m++] = cell[j];
           std::uint64_t key = 0;
           if constexpr (D == 3) {
             key = rest[0] < rest[1] ? (std::uint64_t{rest[0]} << 32 | rest[1]) : (std::uint64_t{rest[1]} << 32 | rest[0]);
           } else if constexpr (D == 2) {
             key = rest[0];
           }
-          around.push_back({key, c, i});
+          around.push_back({key, c, static_cast<int>(i)});
         }
       }
       // usually few entries (a vertex's star): insertion sort, else (a fan of thousands) std::sort
