@@ -499,26 +499,30 @@ BOOST_AUTO_TEST_CASE(held_and_counted_pieces_give_the_same_verdict) {
   BOOST_TEST(hi > 1000u);  // far more than the two faces: the test is about many pieces
   for (const std::size_t budget : {lo, hi})
     BOOST_TEST(counted_fits(budget) == (budget == hi), "counted against a budget of " << budget);
-  // a face holding `held_face` pieces is counted whole first: the same verdicts, and where the
-  // field fits, the same field
-  auto counted_first = [&](std::size_t budget) {
-    auto s = held(budget);
-    s.held_face = 16;
-    return s;
-  };
-  for (const std::size_t budget : {lo, hi})
-    BOOST_TEST(fits(counted_first(budget)) == (budget == hi), "counted first against a budget of " << budget);
-  const auto plain = sizing::build<3>(view, held(hi)), first = sizing::build<3>(view, counted_first(hi));
-  std::size_t differ = 0, finer = 0;
-  for (int i = 0; i <= 20; ++i)
-    for (int j = 0; i + j <= 20; ++j)
-      for (const double z : {0.0, 1e-3, 2e-3}) {
-        const point3 x{0.05 * i / 20, 0.05 * j / 20, z};
-        differ += plain(x) != first(x);
-        finer += plain(x) < 1e-3;
-      }
-  BOOST_TEST(differ == 0u);
-  BOOST_TEST(finer > 0u);  // the layer's size shows in the field
+  // a face holding `held_face` pieces has the rest of its pieces counted first (those of the
+  // level not yet evaluated, those cut for the next, and their descendants): the same verdicts,
+  // and where the field fits, the same field, wherever in a level the count starts
+  const auto plain = sizing::build<3>(view, held(hi));
+  for (const std::size_t at : {16u, 50u, 333u, 1000u}) {
+    auto counted_first = [&](std::size_t budget) {
+      auto s = held(budget);
+      s.held_face = at;
+      return s;
+    };
+    for (const std::size_t budget : {lo, hi})
+      BOOST_TEST(fits(counted_first(budget)) == (budget == hi), "counted from " << at << " held against a budget of " << budget);
+    const auto first = sizing::build<3>(view, counted_first(hi));
+    std::size_t differ = 0, finer = 0;
+    for (int i = 0; i <= 20; ++i)
+      for (int j = 0; i + j <= 20; ++j)
+        for (const double z : {0.0, 1e-3, 2e-3}) {
+          const point3 x{0.05 * i / 20, 0.05 * j / 20, z};
+          differ += plain(x) != first(x);
+          finer += plain(x) < 1e-3;
+        }
+    BOOST_TEST(differ == 0u, "counted from " << at << " held");
+    BOOST_TEST(finer > 0u);  // the layer's size shows in the field
+  }
   // a pair 1e-8 apart: rejected by counting, naming them
   const std::vector<point3> thin{{0, 0, 0}, {0.05, 0, 0}, {0, 0.05, 0}, {0, 0, 1e-8}, {0.05, 0, 1e-8}, {0, 0.05, 1e-8}};
   try {

@@ -321,32 +321,38 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
       return evaluation{v, r, found_face};
     };
     auto cut = [&](const evaluation& x) { return std::isfinite(x.v) && x.r > std::max(x.v, floor); };
-    // this face's pieces counted depth first, on a stack of a few pieces a level (a level at a
-    // time holds the widest level: 16 million pieces on a face of a 5e-6 layer): a piece kept
-    // counts one, a piece cut its children, as at the levels' ends below. `report(n)` gets the
-    // count in batches and returns false to stop; the count so far is returned
-    auto count_face = [&](const auto& report) {
-      std::vector<simplex_pts<D>> stack{face_pts(k)};
-      std::vector<std::uint32_t> hints{no_hint};
+    // pieces of this face and all their descendants counted depth first, on a stack of a few
+    // pieces a level (a level at a time holds the widest level: 16 million pieces on a face of a
+    // 5e-6 layer): a piece kept counts one, a piece cut its children, as at the levels' ends
+    // below. `report(n)` gets the count in batches and returns false to stop
+    auto count_pieces = [&](std::size_t roots, const auto& root, const auto& report) {
+      std::vector<simplex_pts<D>> stack;
+      std::vector<std::uint32_t> hints;
       std::size_t counted = 0, sum = 0;
-      while (!stack.empty() && !overflow.load(std::memory_order_relaxed)) {
-        const simplex_pts<D> piece = stack.back();
-        const std::uint32_t hint = hints.back();
-        stack.pop_back();
-        hints.pop_back();
-        const evaluation x = evaluate(piece, hint);
-        if (!std::isfinite(x.v)) continue;
-        if (cut(x)) {
-          const std::size_t before = stack.size();
-          split<D>(piece, stack);
-          hints.resize(stack.size(), x.found_face);
-          counted += stack.size() - before;
-        } else {
-          ++counted;
-        }
-        if (counted >= 4096) {
-          sum += counted;
-          if (!report(std::exchange(counted, 0))) return sum;
+      for (std::size_t r = 0; r < roots; ++r) {
+        const auto [first, first_hint] = root(r);
+        stack.assign(1, first);
+        hints.assign(1, first_hint);
+        while (!stack.empty()) {
+          if (overflow.load(std::memory_order_relaxed)) return sum + counted;
+          const simplex_pts<D> piece = stack.back();
+          const std::uint32_t hint = hints.back();
+          stack.pop_back();
+          hints.pop_back();
+          const evaluation x = evaluate(piece, hint);
+          if (!std::isfinite(x.v)) continue;
+          if (cut(x)) {
+            const std::size_t before = stack.size();
+            split<D>(piece, stack);
+            hints.resize(stack.size(), x.found_face);
+            counted += stack.size() - before;
+          } else {
+            ++counted;
+          }
+          if (counted >= 4096) {
+            sum += counted;
+            if (!report(std::exchange(counted, 0))) return sum;
+          }
         }
       }
       sum += counted;
@@ -382,16 +388,22 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
               overflow = true;
               break;
             }
-            // this face holding `held_face` pieces: its whole count first, depth first without
-            // holding any, added to the total at once. Over the budget: the error now, with this
-            // face's pieces held up to here (a thin layer's rejection held the whole budget, 1.57
-            // GB, before). Within it: the build goes on, its levels no longer added (the count
-            // was theirs). Faces that fit below `held_face`, all but a few on any input that
-            // fits, are never counted
+            // this face holding `held_face` pieces: the rest of its count first (the level's
+            // pieces not yet evaluated and those cut for the next, and all they will be cut
+            // into), depth first without holding any, and its whole count added to the total at
+            // once. Over the budget: the error now, with this face's pieces held up to here (a
+            // thin layer's rejection held the whole budget, 1.57 GB, before). Within it: the
+            // build goes on, its levels no longer added (the count was theirs). Faces that fit
+            // below `held_face`, all but a few on any input that fits, are never counted
             if (!claimed && out.size() + next.size() >= s.held_face) {
               claimed = true;
-              std::size_t whole = 0;
-              count_face([&](std::size_t n) {
+              // this level's pieces so far (kept, and cut for the next), as its end would add them
+              std::size_t whole = added + out.size() - kept_before + next.size();
+              const std::size_t later = todo.size() - t - 1;  // this level's pieces not yet evaluated
+              auto rest = [&](std::size_t r) {
+                return r < later ? std::pair{todo[t + 1 + r], todo_hint[t + 1 + r]} : std::pair{next[r - later], next_hint[r - later]};
+              };
+              count_pieces(later + next.size(), rest, [&](std::size_t n) {
                 whole += n;
                 if (total.load(std::memory_order_relaxed) - added + whole > max_sources) overflow = true;
                 return !overflow.load(std::memory_order_relaxed);
@@ -419,7 +431,7 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
     } else {
       // only counted (check_feature_size): the same count as the levels' ends above add, so the
       // verdict (the total over the budget) is the same
-      count_face([&](std::size_t n) {
+      count_pieces(1, [&](std::size_t) { return std::pair{face_pts(k), no_hint}; }, [&](std::size_t n) {
         if (total.fetch_add(n, std::memory_order_relaxed) + n > max_sources) overflow = true;
         return !overflow.load(std::memory_order_relaxed);
       });

@@ -71,10 +71,10 @@ struct spec {
   // the boundary pieces the field may cut the faces into (a piece kept counts one, a piece cut its children) before `build`
   // gives up: features far below the model's size (a 1e-8 layer) would need far more
   std::size_t max_pieces = 20'000'000;
-  // a face whose pieces held while `build` cuts it reach this many is counted whole first
-  // (depth first, holding none) against `max_pieces`: a field over the budget is refused with
-  // about this many held per thread, not the whole budget (80 bytes a piece: 1.57 GB for a thin
-  // layer before). The field is the same either way
+  // a face whose pieces held while `build` cuts it reach this many has the rest of its pieces
+  // counted first (depth first, holding none) against `max_pieces`: a field over the budget is
+  // refused with about this many held per thread, not the whole budget (80 bytes a piece: 1.57
+  // GB for a thin layer before). The field and the verdict are the same either way
   std::size_t held_face = std::size_t{1} << 21;
 };
 
