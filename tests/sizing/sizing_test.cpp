@@ -456,10 +456,11 @@ BOOST_AUTO_TEST_CASE(features_beyond_the_budget_are_named) {
   BOOST_TEST(f.minimum() <= 0.45e-3);
 }
 
-// The budget's verdict two ways, the same: `build`, which holds every piece, and
-// `check_feature_size`, which holds none (the quality refinement's check: holding them, a thin
-// layer's rejection took 1.6 GB before it said no). The budget that just fits is found by
-// bisection with `build`; at it both accept, one below both reject.
+// The budget's verdict the same however the pieces are counted: `build` holding every piece,
+// `check_feature_size` holding none (the quality refinement's check), and `build` counting a
+// face's rest once it holds `held_face` pieces (holding them all, a thin layer's rejection took
+// 1.6 GB before it said no). The budget that just fits is found by bisection with `build`; at it
+// all accept, one below all reject, and `build`'s fields are the same either way.
 BOOST_AUTO_TEST_CASE(held_and_counted_pieces_give_the_same_verdict) {
   const std::vector<point3> pts{{0, 0, 0}, {0.05, 0, 0}, {0, 0.05, 0}, {0, 0, 2e-3}, {0.05, 0, 2e-3}, {0, 0.05, 2e-3}};
   static const std::vector<std::array<vertex_id, 3>> faces{{0, 1, 2}, {3, 4, 5}};

@@ -324,17 +324,17 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
     // pieces of this face and all their descendants counted depth first, on a stack of a few
     // pieces a level (a level at a time holds the widest level: 16 million pieces on a face of a
     // 5e-6 layer): a piece kept counts one, a piece cut its children, as at the levels' ends
-    // below. `report(n)` gets the count in batches and returns false to stop
+    // below. `report(n)` gets the count in batches and returns false to stop (as does an overflow)
     auto count_pieces = [&](std::size_t roots, const auto& root, const auto& report) {
       std::vector<simplex_pts<D>> stack;
       std::vector<std::uint32_t> hints;
-      std::size_t counted = 0, sum = 0;
+      std::size_t counted = 0;
       for (std::size_t r = 0; r < roots; ++r) {
         const auto [first, first_hint] = root(r);
         stack.assign(1, first);
         hints.assign(1, first_hint);
         while (!stack.empty()) {
-          if (overflow.load(std::memory_order_relaxed)) return sum + counted;
+          if (overflow.load(std::memory_order_relaxed)) return;
           const simplex_pts<D> piece = stack.back();
           const std::uint32_t hint = hints.back();
           stack.pop_back();
@@ -349,15 +349,10 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
           } else {
             ++counted;
           }
-          if (counted >= 4096) {
-            sum += counted;
-            if (!report(std::exchange(counted, 0))) return sum;
-          }
+          if (counted >= 4096 && !report(std::exchange(counted, 0))) return;
         }
       }
-      sum += counted;
       report(counted);
-      return sum;
     };
     if (keep) {
       // a level at a time (the pieces in the order the field has always had them)
@@ -408,9 +403,7 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
                 if (total.load(std::memory_order_relaxed) - added + whole > max_sources) overflow = true;
                 return !overflow.load(std::memory_order_relaxed);
               });
-              if (overflow.load(std::memory_order_relaxed)) break;
-              total.fetch_add(whole - added, std::memory_order_relaxed);
-              if (total.load(std::memory_order_relaxed) > max_sources) {
+              if (overflow.load(std::memory_order_relaxed) || total.fetch_add(whole - added, std::memory_order_relaxed) + whole - added > max_sources) {
                 overflow = true;
                 break;
               }
