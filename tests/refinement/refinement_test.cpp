@@ -397,15 +397,22 @@ BOOST_AUTO_TEST_CASE(resume_only_refines_the_boundary) {
 
 // conformer::session, as refine() uses it: each next() refines the boundary it is handed, whether
 // it goes on from its own state (handed what it returned last) or resumes afresh (handed another
-// boundary), on the rotated stack (slanted facets) with a size and without
+// boundary), on the rotated stack (slanted facets) with a size and without. The session starts
+// as the pipeline starts it with --quality: start() is conform() itself, and its first next()
+// goes on from that run's state
 BOOST_AUTO_TEST_CASE(session_refines_round_after_round) {
   const auto p = stack(1, {0, 0.5, 1}, true);
+  const std::vector<point3> volume{turn(point3{0.45, 0.55, 0.6}), turn(point3{0.3, 0.3, 0.3})};
   for (double size : {0.3, 0.0}) {
     conformer::options co;
     co.size = size;
-    const auto b0 = conformer::conform(p, {}, co);
+    const auto b0 = conformer::conform(p, volume, co);
     conformer::session<3> s(p, co);
-    std::vector<conformer::boundary<3>> seen{b0};
+    auto started = s.start(volume);
+    BOOST_TEST((started.points == b0.points && started.faces == b0.faces && started.face_source == b0.face_source &&
+                started.volume_points == b0.volume_points && started.steiner == b0.steiner),
+               "size " << size << ": start() differs from conform()");
+    std::vector<conformer::boundary<3>> seen{std::move(started)};
     for (int round = 0; round < 4; ++round) {
       const auto& b = seen.back();
       const std::vector<point3> added{turn(point3{0.5 - 0.07 * round, 0.5, 0.25}), turn(point3{0.2, 0.7 - 0.05 * round, 0.75})};

@@ -2190,7 +2190,8 @@ class state3 : public state<3> {
 
   std::size_t vertex_count(std::uint32_t f) const { return boundary_size(f) + facets_[f].interior.size(); }
 
-  boundary<3> run() {
+  /// conform(): the whole run. keep: the state stays for continue_run() (session::start()).
+  boundary<3> run(bool keep = false) {
     presplit_edges();
     if (sized()) {
       conform_segments();
@@ -2202,7 +2203,7 @@ class state3 : public state<3> {
       else
         seed_facets();
     }
-    return rounds({});
+    return rounds({}, keep);
   }
 
   void on_facet(std::uint32_t f, vertex_id v) override { facets_.at(f).interior.push_back(v); }
@@ -2431,6 +2432,19 @@ session<D>::session(const plc<D>& p, const options& o) : impl_(new impl{p, o}) {
 template <std::size_t D>
 session<D>::~session() = default;
 
+template <>
+boundary<2> session<2>::start(const std::vector<point2>& volume) {
+  return conform(impl_->p, volume, impl_->o);
+}
+template <>
+boundary<3> session<3>::start(const std::vector<point3>& volume) {
+  auto& m = *impl_;
+  m.s.reset();
+  auto s = std::make_unique<state3>(m.p, volume, m.o);
+  auto b = s->run(true);
+  m.s = std::move(s);
+  return b;
+}
 template <>
 boundary<2> session<2>::next(const boundary<2>& previous, const std::vector<point2>& added, const std::vector<std::size_t>& split) {
   return resume(impl_->p, previous, added, split, impl_->o);

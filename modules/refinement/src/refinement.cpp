@@ -8,6 +8,7 @@
 #include <map>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <span>
 #include <stdexcept>
@@ -1674,7 +1675,8 @@ void spatial_order(cells_by_region<D>& cells, const std::vector<point<D>>& p, un
 
 template <std::size_t D>
 domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labelling& l, cells_by_region<D> cells,
-                 const conformer::options& co, const options& o, const meshers<D>& mesh, stats& st) {
+                 const conformer::options& co, const options& o, const meshers<D>& mesh, stats& st,
+                 conformer::session<D>* rounds) {
   st = stats{};  // a report used before starts over (its rounds are the cap's count)
   const double bound = ratio_bound(D, o.bound);
   // per cell: 1 until the plan has found it good (a cell's shape and size never change, so a
@@ -1695,7 +1697,8 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
   runs_by_region<D> runs;  // built by remesh_cavities as it needs them
   // the conformer stays alive between rounds: each round's boundary work follows the points it
   // adds, not the size of the boundary (conformer::session)
-  conformer::session<D> boundary_rounds(p, co);
+  std::optional<conformer::session<D>> own;
+  conformer::session<D>& boundary_rounds = rounds ? *rounds : own.emplace(p, co);
   const spacing_floor<D> floor(b, D == 3 ? spacing_floor<D>::default_ratio : 0.0);
   // the bad elements' count a round before, and whether it rose in each of the last rounds (bit
   // 0 the latest): a dip or a flat round among the rises does not start the count over
@@ -1791,8 +1794,8 @@ template bool remesh_cavities<3>(const conformer::boundary<3>&, const conformer:
                                  const conformer::labelling&, cells_by_region<3>&, unsigned, std::size_t*, std::size_t*,
                                  std::vector<std::vector<char>>*, balls_by_region<3>*, runs_by_region<3>*, std::size_t);
 template domain<2> refine<2>(const plc<2>&, conformer::boundary<2>&, conformer::labelling&, cells_by_region<2>, const conformer::options&,
-                             const options&, const meshers<2>&, stats&);
+                             const options&, const meshers<2>&, stats&, conformer::session<2>*);
 template domain<3> refine<3>(const plc<3>&, conformer::boundary<3>&, conformer::labelling&, cells_by_region<3>, const conformer::options&,
-                             const options&, const meshers<3>&, stats&);
+                             const options&, const meshers<3>&, stats&, conformer::session<3>*);
 
 }  // namespace gsse::refinement

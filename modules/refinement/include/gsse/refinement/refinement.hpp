@@ -222,8 +222,12 @@ bool remesh_cavities(const conformer::boundary<D>& before, const conformer::boun
 /// Refines `cells`, the mesh of boundary `b` (labelled `l`) of PLC `p`, until no element exceeds
 /// the bound except the excepted ones, or the round or point cap is reached (stats says which).
 /// `b` and `l` are updated with the mesh. `co`: the conformer options `b` was made with.
+/// `rounds`: the conformer session that made `b` (its start()), if the caller kept one; the first
+/// round then goes on from it. Without one (or handed another boundary) the first round resumes
+/// the conformer from `b`.
 template <std::size_t D>
 domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labelling& l, cells_by_region<D> cells,
-                 const conformer::options& co, const options& o, const meshers<D>& mesh, stats& st);
+                 const conformer::options& co, const options& o, const meshers<D>& mesh, stats& st,
+                 conformer::session<D>* rounds = nullptr);
 
 }  // namespace gsse::refinement
