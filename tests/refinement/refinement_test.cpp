@@ -2,6 +2,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -147,6 +148,85 @@ BOOST_AUTO_TEST_CASE(uniform_size_bounds_the_edges_3d) {
     BOOST_TEST(f.above == 0u, (rotated ? "rotated: " : "") << f.above << " of " << f.edges << " edges above 1.5 H, the longest " << f.max_ratio << " H");
     BOOST_TEST(pl::measure(d).max_ratio <= 1.414 * (1 + 1e-9));
   }
+}
+
+// --quality 1.414 with a graded size (--grade 1.3 --size 0.07, the stacks of
+// graded_band_next_to_the_boundary in tests/sizing): no edge longer than 1.5 h at its midpoint
+// (refinement::edge_sizes), measured by --size-fit against the field itself. Without the rule
+// (the pipeline handing the refinement no graded3) the stack ends with none and the turned one
+// with 148 of 152,783 (up to 1.67 h). That the bounds the rule clears edges by ask what a query at
+// every midpoint would: graded_edge_rule_asks_what_every_query_would.
+BOOST_AUTO_TEST_CASE(graded_size_bounds_the_edges_3d) {
+  for (bool rotated : {false, true}) {
+    const char* what = rotated ? "turned stack" : "stack";
+    pl::options o = quality_options(1.414, 2, 0.07);
+    o.sizing3.grade = 1.3;
+    o.size_fit = true;
+    pl::report r;
+    (void)pl::mesh(stack(1, {0, 0.4, 0.5, 1}, rotated), {}, o, r);
+    BOOST_TEST(r.problems.empty(), what << ": " << (r.problems.empty() ? "" : r.problems.front()));
+    BOOST_TEST(r.refinement.converged, what);
+    BOOST_TEST_REQUIRE(r.size_measured);
+    const auto& f = r.size_fit;
+    BOOST_TEST(f.edges > 10000u);
+    BOOST_TEST(f.above == 0u, what << ": " << f.above << " of " << f.edges << " edges above 1.5 h, the longest " << f.max_ratio << " h");
+  }
+}
+
+// The graded edge rule's shortcut (refinement::edge_sizes): an edge cleared by the bounds at its
+// ends is one its midpoint's own query would clear too, so one round's plan is the same whether
+// the field is asked at every edge's midpoint (slope unknown), from fresh vertex bounds, or from
+// loose bounds kept from before (half of h at every point, as the placement's may be): the same
+// points, splits and counts, and the shortcut asks the field fewer times. On the turned stack's
+// boundary-only mesh, h = 0.08 + 0.3 |x - c| with segment 2's own maximum 0.15.
+BOOST_AUTO_TEST_CASE(graded_edge_rule_asks_what_every_query_would) {
+  const auto p = stack(1, {0, 0.4, 0.5, 1}, true);
+  conformer::options co;
+  co.size = 0.12;
+  const auto b = conformer::conform(p, {}, co);
+  const auto l = conformer::label(b, p, 1);
+  const auto cells = pl::mesh_segments<3>::wrap(b, l, 2);
+  const point3 c = turn(point3{0.3, 0.6, 0.45});
+  auto h = [c](const point3& x) { return 0.08 + 0.3 * distance(x, c); };
+  std::atomic<long> asked{0};
+  refinement::edge_sizes every;
+  every.h = [&](const point3& x, double cap) {
+    asked.fetch_add(1, std::memory_order_relaxed);
+    return std::min(h(x), cap);
+  };
+  every.segment_maximum = [](int number) { return number == 2 ? 0.15 : std::numeric_limits<double>::infinity(); };
+  refinement::edge_sizes bounded = every;
+  bounded.slope = 0.3;
+  auto plan_with = [&](const refinement::edge_sizes& g, refinement::vertex_sizes* kept, long& queries) {
+    std::vector<std::vector<char>> todo;
+    for (const auto& r : cells) todo.emplace_back(r.size(), 1);
+    asked = 0;
+    auto out = refinement::plan_round<3>(cells, b, refinement::ratio_bound(3, 1.414), 2, {}, 5.0, &l, &todo, 1.0, nullptr,
+                                         nullptr, &g, kept);
+    queries = asked.load();
+    return out;
+  };
+  long q_every = 0, q_fresh = 0, q_loose = 0;
+  const auto a = plan_with(every, nullptr, q_every);
+  refinement::vertex_sizes fresh;
+  const auto f = plan_with(bounded, &fresh, q_fresh);
+  refinement::vertex_sizes loose;
+  for (const auto& x : b.points) loose.lower.push_back(0.5 * h(x));
+  loose.exact.assign(b.points.size(), 0);
+  const auto g = plan_with(bounded, &loose, q_loose);
+  BOOST_TEST(a.large > 0u);  // the rule finds edges too long
+  BOOST_TEST(a.add.size() > 0u);
+  for (const auto* x : {&f, &g}) {
+    BOOST_TEST((x->add == a.add));
+    BOOST_TEST((x->split == a.split));
+    BOOST_TEST(x->large == a.large);
+    BOOST_TEST(x->bad == a.bad);
+  }
+  BOOST_TEST(fresh.lower.size() == b.points.size());
+  for (std::size_t v = 0; v < b.points.size(); ++v)
+    BOOST_TEST(fresh.lower[v] <= h(b.points[v]), "vertex " << v << ": bound " << fresh.lower[v] << " above h " << h(b.points[v]));
+  BOOST_TEST_MESSAGE("queries: every midpoint " << q_every << ", fresh bounds " << q_fresh << ", loose bounds " << q_loose);
+  BOOST_TEST(q_fresh < q_every);
 }
 
 // 2D smallest angles 20.7 (Ruppert's bound), 28 and 33 degrees; the interior points come from the

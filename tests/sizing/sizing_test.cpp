@@ -2,6 +2,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -593,6 +594,45 @@ BOOST_AUTO_TEST_CASE(graded_lattice_coordinates_are_exact) {
       if (v[i] - v[i - 1] < 0.05 * finest) ++close;
     BOOST_TEST(close == 0u, "axis " << k << ": " << close << " pairs of coordinate values closer than a spacing, of " << v.size());
   }
+}
+
+// The lower bounds place_points gives with its points (for the refinement's graded edge rule): h
+// at the cube's centre less the slope times the point's distance from it, the band's moved points
+// (here off a slanted plane, every candidate in the band) included. Each is at most h at its
+// point, and not vacuous: on 90% of the points at least 0.6 h.
+BOOST_AUTO_TEST_CASE(placed_points_bound_h_from_below) {
+  const double slope = 0.35;
+  const point3 fine{0.3137, 0.2719, 0.1893};
+  auto h = [&](const point3& x, int) { return 0.01 + slope * distance(x, fine); };
+  // the segment above a slanted plane (distances to it vary continuously, so that moved points
+  // find room between the lattice's)
+  const double nn = std::sqrt(0.2 * 0.2 + 0.1 * 0.1 + 1.0);
+  const point3 n{0.2 / nn, 0.1 / nn, 1 / nn};
+  auto above_plane = [n](const point3& q) { return dot(n, q) - 0.05; };
+  sizing::placement<3> where;
+  where.segment_of = [=](const point3& q) { return above_plane(q) >= 0 ? 1 : sizing::no_segment; };
+  where.clear = [=](const point3& q, double keep) { return above_plane(q) >= keep; };
+  where.away = [=](const point3& q, double keep, double lift) -> std::optional<point3> {
+    const double t = above_plane(q);
+    if (t >= keep || t <= 0) return std::nullopt;
+    return q + (lift - t) * n;
+  };
+  const sizing::aabb<3> box{{0.0, 0.0, 0.0}, {0.7, 0.5, 0.4}};
+  std::vector<double> lower;
+  const auto pts = sizing::place_points<3>(h, 0.2, box, where, 2, 1.0, true, 0.0, slope, &lower);
+  BOOST_TEST_REQUIRE(pts.size() > 1000u);
+  BOOST_TEST_REQUIRE(lower.size() == pts.size());
+  std::size_t above = 0, tight = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const double hi = h(pts[i], 1);
+    above += lower[i] > hi;
+    tight += lower[i] >= 0.6 * hi;
+  }
+  BOOST_TEST(above == 0u, above << " of " << pts.size() << " bounds above h");
+  BOOST_TEST(tight * 10 >= pts.size() * 9, tight << " of " << pts.size() << " bounds at least 0.6 h");
+  // the band's moved points are among them: without the move, fewer points
+  where.away = nullptr;
+  BOOST_TEST(sizing::place_points<3>(h, 0.2, box, where, 2, 1.0, true, 0.0).size() < pts.size());
 }
 
 // An interface layer or a box with a growth rate of its own: the size grows away from it at that

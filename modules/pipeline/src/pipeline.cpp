@@ -250,11 +250,12 @@ std::vector<point<D>> lattice_points(const coarse_model<D>& m, double h, const s
 /// Points of the size field `h` (graded placement, modules/sizing) plus the cloud.
 template <std::size_t D>
 std::vector<point<D>> field_points(const coarse_model<D>& m, const sizing::size_field<D>& h,
-                                   const std::vector<point<D>>& cloud, std::size_t& dropped, unsigned threads) {
+                                   const std::vector<point<D>>& cloud, std::size_t& dropped, unsigned threads,
+                                   std::vector<double>* lower = nullptr) {
   std::vector<int> numbers;
   for (const auto& r : m.l.regions) numbers.push_back(r.number);
-  auto out = placement::field_points<D>(surface_of(m), m.at, numbers, h, threads);
-  placement::add_cloud<D>(out, cloud, m.at, dropped, threads);
+  auto out = placement::field_points<D>(surface_of(m), m.at, numbers, h, threads, lower);
+  placement::add_cloud<D>(out, cloud, m.at, dropped, threads, lower);
   return out;
 }
 
@@ -417,6 +418,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   // (the benchmark structures did not converge at 31-34 degrees with the lattice)
   const bool refined_interior = D == 2 && o.quality && !creating;
   std::vector<point<D>> volume;
+  std::vector<double> volume_lower;  // graded: a lower bound of h at each volume point (the placement's)
   sizing::size_field<D> field;
   bool field_built = false;  // the field above was built (graded sizing or region volumes)
   bool feature_size_fits = false;  // the local feature size was built within its budget
@@ -449,7 +451,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
       volume = lattice_points(m, o.size, cloud, r.dropped_points, o.threads, o.size > 0 && !refined_interior);
     } else {
       volume = refined_interior ? lattice_points(m, 0, cloud, r.dropped_points, o.threads, false)
-                                : field_points(m, field, cloud, r.dropped_points, o.threads);
+                                : field_points(m, field, cloud, r.dropped_points, o.threads, o.quality ? &volume_lower : nullptr);
       if constexpr (D == 2)
         co.local_size2 = [&field](const point2& x) { return field(x); };
       else
@@ -539,8 +541,19 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     // lattice layer, kept h/2 off every face, left 0.1-1.8% of the edges above it on the benchmark
     // structures; docs/benchmarks.md, thirty-fifth part). A graded field is not asked: a query
     // per element measured costs a microsecond or two, and graded meshes end at most 0.43% above
-    if constexpr (D == 3)
+    if constexpr (D == 3) {
       if (o.size > 0 && (!field_built || field.uniform())) ro.size3 = [h = o.size](const point3&) { return h; };
+      // a graded field: the same 1.5 h, at each edge's midpoint (refinement::edge_sizes; graded
+      // meshes had up to 0.5% of their edges above it, docs/benchmarks.md, forty-second part)
+      if (field_built && !field.uniform()) {
+        auto g = std::make_shared<refinement::edge_sizes>();
+        g->h = [&field](const point3& x, double cap) { return field.capped(x, cap); };
+        g->slope = field.slope();
+        g->segment_maximum = [&field](int number) { return field.segment_maximum(number); };
+        g->volume_lower = std::move(volume_lower);
+        ro.graded3 = std::move(g);
+      }
+    }
     refinement::meshers<D> m;
     m.wrap = [&](const conformer::boundary<D>& bb, const conformer::labelling& ll) { return mesh_segments<D>::wrap(bb, ll, o.threads); };
     m.assemble = [&](const conformer::boundary<D>& bb, const conformer::labelling& ll, refinement::cells_by_region<D> cc) {

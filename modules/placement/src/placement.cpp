@@ -17,15 +17,31 @@ namespace gsse::placement {
 
 template <std::size_t D>
 void add_cloud(std::vector<point<D>>& out, const std::vector<point<D>>& cloud, const location::locator<D>& at,
-               std::size_t& dropped, unsigned threads) {
+               std::size_t& dropped, unsigned threads, std::vector<double>* values) {
   for (const auto& q : cloud) {
     if (at.in_segment(q))
       out.push_back(q);
     else
       ++dropped;
   }
-  gsse::stable_sort(execution::par(threads), out.begin(), out.end(), [](const auto& x, const auto& y) { return lex_less(x, y); });
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  if (!values) {
+    gsse::stable_sort(execution::par(threads), out.begin(), out.end(), [](const auto& x, const auto& y) { return lex_less(x, y); });
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return;
+  }
+  // the same order (a stable sort of the points), the values carried along
+  values->resize(out.size(), 0.0);
+  std::vector<std::pair<point<D>, double>> both(out.size());
+  for (std::size_t i = 0; i < out.size(); ++i) both[i] = {out[i], (*values)[i]};
+  gsse::stable_sort(execution::par(threads), both.begin(), both.end(), [](const auto& x, const auto& y) { return lex_less(x.first, y.first); });
+  out.clear(), values->clear();
+  for (const auto& [q, v] : both) {
+    if (!out.empty() && out.back() == q) {
+      values->back() = std::max(values->back(), v);
+      continue;
+    }
+    out.push_back(q), values->push_back(v);
+  }
 }
 
 namespace {
@@ -58,7 +74,7 @@ struct nearest_foot {
 
 template <std::size_t D>
 std::vector<point<D>> field_points(const surface<D>& b, const location::locator<D>& at, const std::vector<int>& numbers,
-                                   const sizing::size_field<D>& h, unsigned threads) {
+                                   const sizing::size_field<D>& h, unsigned threads, std::vector<double>* lower) {
   std::vector<sizing::aabb<D>> fb(b.faces.size());
   for (std::size_t f = 0; f < b.faces.size(); ++f) {
     fb[f] = sizing::aabb<D>::empty();
@@ -83,7 +99,7 @@ std::vector<point<D>> field_points(const surface<D>& b, const location::locator<
     faces.visit_near(q, [&](const sizing::aabb<D>& bx) { return bx.distance2(q) < n.best; }, n);
     return n.lifted(keep, lift);
   };
-  return sizing::place_points<D>(h, sizing::aabb<D>{at.lo(), at.hi()}, where, threads);
+  return sizing::place_points<D>(h, sizing::aabb<D>{at.lo(), at.hi()}, where, threads, lower);
 }
 
 template <std::size_t D>
@@ -412,10 +428,12 @@ std::vector<point<D>> lattice_points(const surface<D>& b, const location::locato
 template std::vector<point<2>> lattice_points<2>(const surface<2>&, const location::locator<2>&, double, unsigned);
 template std::vector<point<3>> lattice_points<3>(const surface<3>&, const location::locator<3>&, double, unsigned);
 template std::vector<point<2>> field_points<2>(const surface<2>&, const location::locator<2>&, const std::vector<int>&,
-                                               const sizing::size_field<2>&, unsigned);
+                                               const sizing::size_field<2>&, unsigned, std::vector<double>*);
 template std::vector<point<3>> field_points<3>(const surface<3>&, const location::locator<3>&, const std::vector<int>&,
-                                               const sizing::size_field<3>&, unsigned);
-template void add_cloud<2>(std::vector<point<2>>&, const std::vector<point<2>>&, const location::locator<2>&, std::size_t&, unsigned);
-template void add_cloud<3>(std::vector<point<3>>&, const std::vector<point<3>>&, const location::locator<3>&, std::size_t&, unsigned);
+                                               const sizing::size_field<3>&, unsigned, std::vector<double>*);
+template void add_cloud<2>(std::vector<point<2>>&, const std::vector<point<2>>&, const location::locator<2>&, std::size_t&, unsigned,
+                           std::vector<double>*);
+template void add_cloud<3>(std::vector<point<3>>&, const std::vector<point<3>>&, const location::locator<3>&, std::size_t&, unsigned,
+                           std::vector<double>*);
 
 }  // namespace gsse::placement

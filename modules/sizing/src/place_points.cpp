@@ -18,6 +18,7 @@ struct candidate {
   int level;
   std::uint64_t order;  // generation order within the whole run (root cube, then depth-first)
   double h = 0;         // the size at its cube's centre
+  double off = 0;       // its distance from that centre, at most
 };
 
 constexpr int max_level = 40;
@@ -26,17 +27,18 @@ constexpr int max_level = 40;
 
 template <std::size_t D>
 std::vector<point<D>> place_points(const size_field<D>& h, const aabb<D>& box, const placement<D>& where,
-                                   unsigned threads) {
+                                   unsigned threads, std::vector<double>* lower) {
   const double extent = std::sqrt(squared_distance(box.lo, box.hi));
   const double d0 = std::isfinite(h.global()) ? std::min(h.global(), extent) : 0.5 * extent;
+  const bool bounded = std::isfinite(h.slope());
   return place_points<D>([&h](const point<D>& x, int seg) { return seg == no_segment ? h(x) : h(x, seg); }, d0, box,
-                         where, threads, 1.0, true, h.global());
+                         where, threads, 1.0, true, h.global(), bounded ? h.slope() : 0.0, bounded ? lower : nullptr);
 }
 
 template <std::size_t D>
 std::vector<point<D>> place_points(const std::function<double(const point<D>&, int)>& h, double d0, const aabb<D>& box,
                                    const placement<D>& where, unsigned threads, double stretch,
-                                   bool parent, double band_from) {
+                                   bool parent, double band_from, double slope, std::vector<double>* lower) {
   const double extent = std::sqrt(squared_distance(box.lo, box.hi));
   if (!(extent > 0) || !(d0 > 0)) return {};
   // cube side of the level-0 lattice: BCC nearest neighbours at sqrt(3)/2 a; 2D: squares of side
@@ -102,11 +104,12 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
         return;
       }
       if constexpr (D == 3) {
-        out.push_back({c, level, order++, hc});
+        // (the corners lie d from the centre: BCC's nearest neighbours; 1e-9 for rounding)
+        out.push_back({c, level, order++, hc, 0.0});
         for (unsigned m = 0; m < (1u << D); ++m) {
           std::array<std::int64_t, D> j;
           for (std::size_t k = 0; k < D; ++k) j[k] = i[k] + ((m >> k) & 1u);
-          out.push_back({coord(j, level), level, order++, hc});
+          out.push_back({coord(j, level), level, order++, hc, d * (1 + 1e-9)});
         }
       } else {
         // the triangular lattice's points in the half-open square: row j at origin + j row0 / 2^level,
@@ -122,7 +125,7 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
           for (;; m += 2) {
             const double x = origin[0] + std::ldexp(static_cast<double>(m) * 0.5 * d0, -level);
             if (x >= hi0) break;
-            if (x >= lo[0]) out.push_back({point<D>{x, y}, level, order++, hc});
+            if (x >= lo[0]) out.push_back({point<D>{x, y}, level, order++, hc, distance(point<D>{x, y}, c) * (1 + 1e-9)});
           }
         }
       }
@@ -135,7 +138,7 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
     for (const auto& v : per_root) total += v.size();
     all.reserve(total);
     for (auto& v : per_root) {
-      for (auto& x : v) all.push_back({x.q, x.level, base + x.order, x.h});
+      for (auto& x : v) all.push_back({x.q, x.level, base + x.order, x.h, x.off});
       base += v.size();
       std::vector<candidate<D>>().swap(v);
     }
@@ -191,32 +194,35 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
     }
     return free;
   };
-  auto take = [&](const point<D>& q, int level) {
-    auto& g = grids[static_cast<std::size_t>(level)];
-    if (!g) g = std::make_unique<hash_grid<D>>(origin, std::ldexp(d0, -level));
+  if (lower) lower->clear();
+  auto take = [&](const point<D>& q, const candidate<D>& x, double off) {
+    auto& g = grids[static_cast<std::size_t>(x.level)];
+    if (!g) g = std::make_unique<hash_grid<D>>(origin, std::ldexp(d0, -x.level));
     g->insert(static_cast<std::uint32_t>(out.size()), q);
     out.push_back(q);
+    if (lower) lower->push_back(std::isfinite(x.h) ? x.h - slope * off : x.h);
   };
   for (std::size_t k = 0; k < all.size(); ++k) {
     // 0.8 of the smaller spacing, and at least 0.55 h in 3D, 0.5 h in 2D: the spacing alone let
     // a finer level's points crowd a coarser one's, edges below h/2 (11-13% of the edges on the
     // rotated MOSFET and FinFET graded from the feature size); 0.6 h in 3D and 0.55 h in 2D began
     // to leave holes (edges above 1.5 h), docs/benchmarks.md thirty-seventh part
-    if (ok[k] == 1 && free_of(all[k].q, all[k], D == 3 ? 0.55 : 0.5)) take(all[k].q, all[k].level);
+    if (ok[k] == 1 && free_of(all[k].q, all[k], D == 3 ? 0.55 : 0.5)) take(all[k].q, all[k], all[k].off);
   }
   // the band next to the boundary where h is the global size (modules/placement/README.md, step 4,
   // as the uniform lattice): a candidate dropped as too near a face, moved `band_lift` d off it,
   // taken in candidate order when clear, in a segment and band_gap h from every point taken
   for (std::size_t k = 0; k < all.size(); ++k)
-    if (ok[k] == 2 && free_of(moved[k], all[k], band_gap)) take(moved[k], all[k].level);
+    if (ok[k] == 2 && free_of(moved[k], all[k], band_gap))  // moved at most band_lift d
+      take(moved[k], all[k], all[k].off + band_lift * std::ldexp(d0, -all[k].level) * (1 + 1e-9));
   return out;
 }
 
-template std::vector<point2> place_points<2>(const size_field<2>&, const aabb<2>&, const placement<2>&, unsigned);
+template std::vector<point2> place_points<2>(const size_field<2>&, const aabb<2>&, const placement<2>&, unsigned, std::vector<double>*);
 template std::vector<point2> place_points<2>(const std::function<double(const point2&, int)>&, double, const aabb<2>&,
-                                             const placement<2>&, unsigned, double, bool, double);
+                                             const placement<2>&, unsigned, double, bool, double, double, std::vector<double>*);
 template std::vector<point3> place_points<3>(const std::function<double(const point3&, int)>&, double, const aabb<3>&,
-                                             const placement<3>&, unsigned, double, bool, double);
-template std::vector<point3> place_points<3>(const size_field<3>&, const aabb<3>&, const placement<3>&, unsigned);
+                                             const placement<3>&, unsigned, double, bool, double, double, std::vector<double>*);
+template std::vector<point3> place_points<3>(const size_field<3>&, const aabb<3>&, const placement<3>&, unsigned, std::vector<double>*);
 
 }  // namespace gsse::sizing

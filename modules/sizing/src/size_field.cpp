@@ -79,7 +79,12 @@ double size_field<D>::background_value(const point<D>& x) const {
 
 template <std::size_t D>
 double size_field<D>::operator()(const point<D>& x) const {
-  double v = global_;
+  return capped(x, unbounded);
+}
+
+template <std::size_t D>
+double size_field<D>::capped(const point<D>& x, double cap) const {
+  double v = std::min(global_, cap);
   for (const auto& b : boxes_) {
     aabb<D> box{b.lo, b.hi};
     v = std::min(v, b.size + (b.grade > 0 ? b.grade - 1 : slope_) * std::sqrt(box.distance2(x)));

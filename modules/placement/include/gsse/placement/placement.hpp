@@ -37,16 +37,18 @@ std::vector<point<D>> lattice_points(const surface<D>& b, const location::locato
 
 /// The points the size field h asks for (sizing::place_points over the box of `at`): a candidate
 /// counts for the segment `numbers[region]` that holds it (sizing::no_segment outside), and keeps
-/// the distance the placement asks from every face of `b`.
+/// the distance the placement asks from every face of `b`. `lower`: per point, a lower bound of h
+/// there (sizing::place_points), if given.
 template <std::size_t D>
 std::vector<point<D>> field_points(const surface<D>& b, const location::locator<D>& at, const std::vector<int>& numbers,
-                                   const sizing::size_field<D>& h, unsigned threads);
+                                   const sizing::size_field<D>& h, unsigned threads, std::vector<double>* lower = nullptr);
 
 /// The user's cloud points that lie in a segment appended to `out` (the others counted in
 /// `dropped`); then `out` sorted (lexicographically) and its duplicates removed (a cloud point may
-/// repeat a lattice point or another one).
+/// repeat a lattice point or another one). `values`, if given, holds one number per point of `out`
+/// and goes along: 0 for a cloud point, the largest of a repeated point's.
 template <std::size_t D>
 void add_cloud(std::vector<point<D>>& out, const std::vector<point<D>>& cloud, const location::locator<D>& at,
-               std::size_t& dropped, unsigned threads);
+               std::size_t& dropped, unsigned threads, std::vector<double>* values = nullptr);
 
 }  // namespace gsse::placement

@@ -18,6 +18,8 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,29 @@
 #include "gsse/sizing/box_tree.hpp"
 
 namespace gsse::refinement {
+
+/// 3D: a graded size field for the edge rule (options::graded3): an edge of a segment longer than
+/// 1.5 h at its midpoint, h the smaller of h(x) and the segment's own maximum, as the issue
+/// measures it (sizing::edge_fit). Asking h at every edge's midpoint costs a microsecond or more
+/// a query (millions of edges); so h is asked at the vertices (a lower bound kept across rounds,
+/// vertex_sizes) and at an edge's midpoint only where the bound the Lipschitz constant gives from
+/// its ends, h(m) >= h(u) - slope |uv| / 2, does not clear it. Every query is capped (h asked only
+/// up to what the edges there need: sizing::size_field::capped), which keeps its search local.
+struct edge_sizes {
+  std::function<double(const point3&, double cap)> h;  // min(h(x), cap), without the segments' own maxima
+  double slope = std::numeric_limits<double>::infinity();  // h's Lipschitz constant; infinity: ask every edge
+  std::function<double(int)> segment_maximum;          // by segment number; may be empty (none)
+  // a lower bound of h at each volume point of the boundary (ids plc_points + i), as the graded
+  // placement knows it (sizing::place_points): those points need no query of their own. May be
+  // empty
+  std::vector<double> volume_lower;
+};
+/// plan_round's values of the graded h at the points (edge_sizes), kept across rounds as the
+/// points grow: a lower bound of h at each point, h itself where `exact`.
+struct vertex_sizes {
+  std::vector<double> lower;
+  std::vector<char> exact;
+};
 
 struct options {
   // 3D: the radius-edge bound (circumradius / shortest edge), 2.0 by default, at least
@@ -49,6 +74,9 @@ struct options {
   // Empty: shape only
   std::function<double(const point2&)> size2;
   std::function<double(const point3&)> size3;
+  // 3D, a graded size field (size3 empty): an element with an edge longer than 1.5 h at the
+  // edge's midpoint is refined by its circumcentre, as a bad one (edge_sizes)
+  std::shared_ptr<const edge_sizes> graded3;
   // 3D small input angles: a bad element whose circumcentre lies within acute_guard x the
   // protecting ball of an acute PLC vertex (the conformer's; shells about it) is excepted: left
   // as it is and counted (stats::excepted); so is one near a sharp input edge, one encroaching a
@@ -157,7 +185,8 @@ plan<D> plan_round(const cells_by_region<D>& cells, const conformer::boundary<D>
                    const std::function<double(const point<D>&)>& size = {}, double sliver_angle = 0,
                    const conformer::labelling* labels = nullptr, std::vector<std::vector<char>>* todo = nullptr,
                    double acute_guard = 0, balls_by_region<D>* balls = nullptr,
-                   const spacing_floor<D>* floor = nullptr);
+                   const spacing_floor<D>* floor = nullptr, const edge_sizes* graded = nullptr,
+                   vertex_sizes* vertex_h = nullptr);
 
 /// How the refinement meshes (the pipeline's mesh_segments::wrap and ::assemble): every region of
 /// a labelled boundary from scratch (the first mesh, and the fallback when a round's cavities do

@@ -45,9 +45,12 @@ struct placement {
   std::function<std::optional<point<D>>(const point<D>&, double keep, double lift)> away;
 };
 
+/// `lower`, if given: per point returned, a lower bound of h there (h at the centre of the cube
+/// that gave it, less the field's slope times the point's distance from that centre at most), for
+/// the refinement's edge rule (refinement::edge_sizes). Filled only where the slope is finite.
 template <std::size_t D>
 std::vector<point<D>> place_points(const size_field<D>& h, const aabb<D>& box, const placement<D>& where,
-                                   unsigned threads = 1);
+                                   unsigned threads = 1, std::vector<double>* lower = nullptr);
 
 /// The same for any size function h(x, segment) (segment: no_segment where unknown); `d0` is the
 /// coarsest spacing (the largest size that matters). The conformer seeds graded facets with it in
@@ -56,9 +59,12 @@ std::vector<point<D>> place_points(const size_field<D>& h, const aabb<D>& box, c
 /// `band_from`: a candidate too near a face whose cube's size is at least this (the size field's
 /// placement: its global size, where h is flat) is moved off the face (`placement::away`) and
 /// taken when clear, as the uniform lattice's band (modules/placement/README.md, step 4).
+/// `lower`, if given: per point returned, h at its cube's centre less `slope` times the point's
+/// distance from that centre at most (a lower bound of h there when h is Lipschitz with `slope`).
 template <std::size_t D>
 std::vector<point<D>> place_points(const std::function<double(const point<D>&, int)>& h, double d0, const aabb<D>& box,
                                    const placement<D>& where, unsigned threads = 1, double stretch = 1.0,
-                                   bool parent = false, double band_from = unbounded);
+                                   bool parent = false, double band_from = unbounded, double slope = 0,
+                                   std::vector<double>* lower = nullptr);
 
 }  // namespace gsse::sizing

@@ -95,13 +95,23 @@ class size_field {
   double operator()(const point<D>& x) const;
   /// h at x inside segment `number` (also its own maximum size).
   double operator()(const point<D>& x, int number) const;
+  /// min(h(x), cap): h(x) itself where it lies below cap; the search skips every term that cannot
+  /// go below cap, so a small cap asks far less than h(x) does (the refinement's edge rule).
+  double capped(const point<D>& x, double cap) const;
   /// True if h is the global size everywhere (no other term binds anywhere): the lattice paths.
   bool uniform() const { return uniform_; }
   double global() const { return global_; }
   /// The smallest value of the field (over its sources and the global size).
   double minimum() const { return minimum_; }
-  /// The field's Lipschitz constant: the largest growth rate of any term, less 1.
-  double slope() const { return max_slope_; }
+  /// The field's Lipschitz constant: the largest growth rate of any term, less 1 (a background
+  /// mesh, applied as given, has none it knows of: infinity then).
+  double slope() const { return background_ ? unbounded : max_slope_; }
+  /// Segment `number`'s own maximum size (unbounded if it has none): h(x, number) is the smaller
+  /// of it and h(x).
+  double segment_maximum(int number) const {
+    const auto it = segment_size_.find(number);
+    return it == segment_size_.end() ? unbounded : it->second;
+  }
   /// Sources of the graded minimum (boundary face pieces), for statistics and tests.
   std::size_t sources() const {
     std::size_t n = faces_.size();
