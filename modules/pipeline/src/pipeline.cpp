@@ -539,8 +539,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     }
     // 3D, a uniform size: no edge longer than 1.5 H (the band between the boundary and the first
     // lattice layer, kept h/2 off every face, left 0.1-1.8% of the edges above it on the benchmark
-    // structures; docs/benchmarks.md, thirty-fifth part). A graded field is not asked: a query
-    // per element measured costs a microsecond or two, and graded meshes end at most 0.43% above
+    // structures; docs/benchmarks.md, thirty-fifth part)
     if constexpr (D == 3) {
       if (o.size > 0 && (!field_built || field.uniform())) ro.size3 = [h = o.size](const point3&) { return h; };
       // a graded field: the same 1.5 h, at each edge's midpoint (refinement::edge_sizes; graded
