@@ -466,8 +466,8 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   if (o.progress) o.progress("conforming the boundary (" + std::to_string(volume.size()) + " volume points)");
   // with --quality the conformer's state is kept for the refinement's first round (a session:
   // the same boundary as the conform stage, without a rebuild in the first round)
-  std::optional<conformer::session<D>> rounds;
-  auto b = o.quality ? rounds.emplace(p, co).start(volume) : conform<D>{}(p, volume, co);
+  std::optional<conformer::session<D>> session;
+  auto b = o.quality ? session.emplace(p, co).start(volume) : conform<D>{}(p, volume, co);
   r.steiner = b.steiner;
   lap("conform");
   auto l = conformer::label(b, p, o.threads);
@@ -558,7 +558,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     m.assemble = [&](const conformer::boundary<D>& bb, const conformer::labelling& ll, refinement::cells_by_region<D> cc) {
       return mesh_segments<D>::assemble(bb.points, ll, std::move(cc), o.threads);
     };
-    d = refinement::refine(p, b, l, std::move(cells), co, ro, m, r.refinement, &*rounds);
+    d = refinement::refine(p, b, l, std::move(cells), co, ro, m, r.refinement, &*session);
     r.quality = true;
     r.steiner = b.steiner;
   }
