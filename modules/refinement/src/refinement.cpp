@@ -498,9 +498,9 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
           }
       }
     }, [&](std::size_t k) { return static_cast<double>(chunks[k].cells.size()); });
-    // asked up to what is needed, no further: the capped search stays near the point (up to
-    // twice as much asked 2/3 as many points, each at twice the cost; the rotated FinFET graded:
-    // 0.5 s against 0.3 s)
+    // asked up to what is needed, no further: the capped search stays near the point (capped at
+    // twice that, two thirds as many queries at about three times the cost each: the rotated
+    // FinFET graded 0.5 s of queries against 0.3 s)
     std::vector<std::size_t> starts;
     for (std::size_t a = 0; a < n; a += piece) starts.push_back(a);
     if constexpr (D == 3)
