@@ -434,6 +434,37 @@ BOOST_AUTO_TEST_CASE(field_is_lipschitz) {
   BOOST_TEST(f(point3{0.01, 0.01, 1}) == 0.02);
 }
 
+// The field is the same when the input is turned: each term's distance is to its boundary piece
+// itself, not to the piece's box (which for a slanted piece reaches up to the piece's radius off
+// it). Two parallel triangles 0.001 apart and the same turned off the axes (support/stack.hpp's
+// rotation): h at 2,000 points and at their turned images agree to rounding. With the boxes'
+// distances they differed by up to 17% (this test then failed), and the rotated MOSFET took
+// 364,353 points with --grade 1.3 where the axis-aligned one took 255,732 (now 249,169 and
+// 255,577; docs/benchmarks.md, forty-third part).
+BOOST_AUTO_TEST_CASE(field_is_the_same_when_turned) {
+  sizing::spec<3> s;
+  s.grade = 1.3;
+  s.global = 0.05;
+  const std::vector<point3> pts{{0, 0, 0}, {0.05, 0, 0}, {0.01, 0.04, 0}, {0, 0, 0.001}, {0.05, 0, 0.001}, {0.01, 0.04, 0.001}};
+  std::vector<point3> turned;
+  for (const auto& q : pts) turned.push_back(gsse::test::turn(q));
+  const auto f = two_triangles(pts, {{1, 0}, {0, 1}}, s), g = two_triangles(turned, {{1, 0}, {0, 1}}, s);
+  BOOST_TEST_REQUIRE(f.sources() > 100u);
+  BOOST_TEST(g.sources() == f.sources());
+  std::mt19937 r(5);
+  std::uniform_real_distribution<double> u(-0.03, 0.08);
+  double worst = 0;
+  std::size_t graded = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const point3 x{u(r), u(r), 0.02 * u(r)};
+    const double a = f(x), b = g(gsse::test::turn(x));
+    graded += a < s.global;
+    worst = std::max(worst, std::abs(a - b) / a);
+  }
+  BOOST_TEST(graded > 1000u);  // most points are where the pieces' terms bind
+  BOOST_TEST(worst <= 1e-9, "h differs by " << worst << " (relative) when turned");
+}
+
 // Features far below the model's size (two triangles 1e-8 apart, 0.05 wide): the field would need
 // about (0.05 / 4.5e-9)^2 pieces; `build` gives up at its budget, naming the closest features found,
 // their gap and where. (Until 2026-11-29 the message named nothing, and with the budget of 2e7 a
@@ -714,12 +745,15 @@ BOOST_AUTO_TEST_CASE(edge_fit_counts_each_segments_edges_against_the_size) {
 }
 
 // Graded points keep about half the size between them, not only 0.8 of the finer lattice's
-// spacing (sizing::place_points): the edges below h/2 at the midpoint fall, with no more edges
-// above 1.5 h. Graded from the feature size alone (--grade 1.3): the stack with a 1e-3 film,
-// axis-aligned and turned, at most 2% of the edges below half (spacing alone: 18,746 of 542,608
-// and 38,622 of 842,221, 3.5% and 4.6%; now 0.75% and 1.6%), and the 2D MOSFET example at most
-// 7% (spacing alone 408 of 4,560, 8.9%; now 5.7%); at most 1 in 10,000 edges above 1.5 h (3D;
-// 2D 1 in 1,000), 1, 0 and 1 both times.
+// spacing (sizing::place_points), and graded_keep h off the faces, not only half their spacing:
+// the edges below h/2 at the midpoint fall, with no more edges above 1.5 h. Graded from the
+// feature size alone (--grade 1.3): the stack with a 1e-3 film, axis-aligned and turned, at most
+// 1% of the edges below half (spacing alone: 18,746 of 542,608 and 38,622 of 842,221, 3.5% and
+// 4.6%; with 0.55 h between points 0.75% and 1.6%; with the field's distances to the pieces
+// themselves 0.81% and 2.25% of 522,058 and 624,912; now, off the faces by graded_keep h too,
+// 2,254 of 513,623 and 2,826 of 555,565, 0.44% and 0.51%), and the 2D MOSFET example at most 4%
+// (spacing alone 408 of 4,560, 8.9%; then 5.7%, then 268 of 4,497, 6.0%; now 135 of 4,222, 3.2%);
+// at most 1 in 10,000 edges above 1.5 h (3D; 2D 1 in 1,000), 0, 0 and 1.
 BOOST_AUTO_TEST_CASE(graded_points_keep_half_the_size_apart) {
   auto fit_of = [](const auto& p, const char* what) {
     pl::options o;
@@ -741,12 +775,12 @@ BOOST_AUTO_TEST_CASE(graded_points_keep_half_the_size_apart) {
     const char* what = rotated ? "turned stack" : "stack";
     const auto f = fit_of(stack(0.02, {0, 0.01, 0.011, 0.03}, {}, rotated), what);
     BOOST_TEST(f.edges > 1000u);
-    BOOST_TEST(f.below_half * 50 <= f.edges, what << ": " << f.below_half << " of " << f.edges << " edges below half");
+    BOOST_TEST(f.below_half * 100 <= f.edges, what << ": " << f.below_half << " of " << f.edges << " edges below half");
     BOOST_TEST(f.above * 10000 <= f.edges, what << ": " << f.above << " of " << f.edges << " edges above 1.5");
   }
   const auto f2 = fit_of(std::get<plc<2>>(io::read_plc(std::string(GSSE_SOURCE_DIR) + "/examples/mosfet2d.poly")), "mosfet2d");
   BOOST_TEST(f2.edges > 1000u);
-  BOOST_TEST(f2.below_half * 100 <= 7 * f2.edges, "mosfet2d: " << f2.below_half << " of " << f2.edges << " edges below half");
+  BOOST_TEST(f2.below_half * 100 <= 4 * f2.edges, "mosfet2d: " << f2.below_half << " of " << f2.edges << " edges below half");
   BOOST_TEST(f2.above * 1000 <= f2.edges, "mosfet2d: " << f2.above << " of " << f2.edges << " edges above 1.5");
 }
 
@@ -754,8 +788,11 @@ BOOST_AUTO_TEST_CASE(graded_points_keep_half_the_size_apart) {
 // points dropped as too near a face are moved off it as the uniform lattice's band is
 // (modules/placement/README.md, step 4). Without it the gap to the boundary left 401 edges above
 // 1.5 h (up to 1.66 h) on the axis-aligned stack, now none; on the turned one 401 (up to 1.71 h),
-// now 167 (1.67 h): the band's points follow the faces, the turned lattice's other gaps stay
-// (docs/benchmarks.md, thirty-eighth part). Edges below half: 1.0% and 2.8%, as without (1.0% and 2.9%).
+// then 167 (1.67 h): the band's points follow the faces, the turned lattice's other gaps stay
+// (docs/benchmarks.md, thirty-eighth part). Edges below half: 1.0% and 2.8%, as without (1.0% and
+// 2.9%). Since the field measures distances to its pieces themselves and graded points keep
+// graded_keep h off the faces where h is below the global size (forty-third part): 77 above
+// 1.5 h on the turned stack (1.67 h), below half 0.38% and 0.82%.
 BOOST_AUTO_TEST_CASE(graded_band_next_to_the_boundary) {
   for (bool rotated : {false, true}) {
     const char* what = rotated ? "turned stack" : "stack";
@@ -775,6 +812,6 @@ BOOST_AUTO_TEST_CASE(graded_band_next_to_the_boundary) {
     BOOST_TEST(f.edges > 10000u);
     BOOST_TEST(f.above * (rotated ? 500 : 10000) <= f.edges, what << ": " << f.above << " of " << f.edges << " edges above 1.5 h, the longest " << f.max_ratio);
     BOOST_TEST(f.max_ratio <= (rotated ? 1.69 : 1.5), what << ": the longest edge " << f.max_ratio << " h");
-    BOOST_TEST(f.below_half * 100 <= 3 * f.edges, what << ": " << f.below_half << " of " << f.edges << " edges below half");
+    BOOST_TEST(f.below_half * 100 <= 2 * f.edges, what << ": " << f.below_half << " of " << f.edges << " edges below half");
   }
 }

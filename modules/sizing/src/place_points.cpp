@@ -156,7 +156,7 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
   // moved off it is (2, the point in `moved`)
   std::vector<char> ok(all.size(), 0);
   const bool band = where.away && std::isfinite(band_from);
-  std::vector<point<D>> moved(band ? all.size() : 0);
+  std::vector<point<D>> moved(where.away ? all.size() : 0);
   constexpr std::size_t chunk = 1024;
   std::vector<std::size_t> chunks((all.size() + chunk - 1) / chunk);
   std::iota(chunks.begin(), chunks.end(), std::size_t{0});
@@ -165,8 +165,16 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
       const auto& x = all[k];
       const double d = std::ldexp(d0, -x.level);
       if (where.segment_of(x.q) == no_segment) continue;
-      if (where.clear(x.q, 0.5 * d)) {
+      // clear of the faces by half the spacing, and by graded_keep h: only half the spacing, in
+      // (h/4, h/2], left points on a slanted facet's side a quarter of h from it, and edges to the
+      // facet's vertices below h/2 (5% of the edges on the rotated MOSFET); one too near by that
+      // much only is moved graded_lift h off its nearest face (3)
+      const double keep = std::isfinite(x.h) ? graded_keep<D> * x.h : 0.0;
+      if (where.clear(x.q, std::max(0.5 * d, keep))) {
         ok[k] = 1;
+      } else if (where.away && keep > 0.5 * d && !(band && x.h >= band_from) && where.clear(x.q, 0.5 * d)) {
+        const auto m = where.away(x.q, keep, graded_lift<D> * x.h);
+        if (m && where.clear(*m, keep) && where.segment_of(*m) != no_segment) ok[k] = 3, moved[k] = *m;
       } else if (band && x.h >= band_from) {
         const auto m = where.away(x.q, 0.5 * d, band_lift * d);
         if (m && where.clear(*m, 0.5 * d) && where.segment_of(*m) != no_segment) ok[k] = 2, moved[k] = *m;
@@ -212,6 +220,11 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
   // the band next to the boundary where h is the global size (modules/placement/README.md, step 4,
   // as the uniform lattice): a candidate dropped as too near a face, moved `band_lift` d off it,
   // taken in candidate order when clear, in a segment and band_gap h from every point taken
+  // the points moved off a face by graded_lift, taken in candidate order when band_gap h from
+  // every point taken, before the band's
+  for (std::size_t k = 0; k < all.size(); ++k)
+    if (ok[k] == 3 && free_of(moved[k], all[k], band_gap))
+      take(moved[k], all[k], all[k].off + std::sqrt(squared_distance(moved[k], all[k].q)) * (1 + 1e-9));
   for (std::size_t k = 0; k < all.size(); ++k)
     if (ok[k] == 2 && free_of(moved[k], all[k], band_gap))  // moved at most band_lift d
       take(moved[k], all[k], all[k].off + band_lift * std::ldexp(d0, -all[k].level) * (1 + 1e-9));

@@ -89,8 +89,9 @@ double size_field<D>::capped(const point<D>& x, double cap) const {
     aabb<D> box{b.lo, b.hi};
     v = std::min(v, b.size + (b.grade > 0 ? b.grade - 1 : slope_) * std::sqrt(box.distance2(x)));
   }
-  v = faces_.graded_min(x, slope_, v);
-  for (const auto& [slope, tree] : layers_) v = tree.graded_min(x, slope, v);
+  v = faces_.graded_min(x, slope_, v, [&](std::uint32_t i, double) { return face_distance2<D>(face_pieces_[i], x); });
+  for (const auto& L : layers_)
+    v = L.tree.graded_min(x, L.slope, v, [&](std::uint32_t i, double) { return face_distance2<D>(L.pieces[i], x); });
   if (background_) v = std::min(v, background_value(x));
   return v;
 }
@@ -477,15 +478,21 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
       for (const auto& q : piece) bx.add(q);
       boxes.push_back(bx);
       values.push_back(value);
+      f.face_pieces_.push_back(piece);
       f.minimum_ = std::min(f.minimum_, value);
     }
   f.faces_ = box_tree<D>(std::move(boxes), std::move(values));
   // interface layers with a growth rate of their own: their faces, cut in pieces no larger than
   // the layer's size, in one tree per rate
-  std::map<double, std::pair<std::vector<aabb<D>>, std::vector<double>>> by_slope;
+  struct layer_parts {
+    std::vector<aabb<D>> boxes;
+    std::vector<double> values;
+    std::vector<simplex_pts<D>> pieces;
+  };
+  std::map<double, layer_parts> by_slope;
   for (const auto& L : s.interfaces) {
     if (L.grade == 0 || !(L.size < f.global_)) continue;
-    auto& [lboxes, lvalues] = by_slope[L.grade - 1];
+    auto& [lboxes, lvalues, lpieces] = by_slope[L.grade - 1];
     for (std::size_t k = 0; k < nf && k < b.sides.size(); ++k) {
       const int n0 = b.sides[k][0], n1 = b.sides[k][1];
       if (!((L.a == n0 && L.b == n1) || (L.a == n1 && L.b == n0))) continue;
@@ -504,6 +511,7 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
           for (const auto& q : piece) bx.add(q);
           lboxes.push_back(bx);
           lvalues.push_back(std::max(L.size, floor));
+          lpieces.push_back(piece);
           f.minimum_ = std::min(f.minimum_, std::max(L.size, floor));
         }
         if (lboxes.size() + next.size() > max_sources)
@@ -512,8 +520,9 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
       }
     }
   }
-  for (auto& [slope, bv] : by_slope)
-    if (!bv.first.empty()) f.layers_.push_back({slope, box_tree<D>(std::move(bv.first), std::move(bv.second))});
+  for (auto& [slope, parts] : by_slope)
+    if (!parts.boxes.empty())
+      f.layers_.push_back({slope, box_tree<D>(std::move(parts.boxes), std::move(parts.values)), std::move(parts.pieces)});
   f.uniform_ = f.faces_.empty() && f.layers_.empty() && !f.background_;
   for (const auto& bx : s.boxes) {
     if (!(bx.size > 0)) throw std::invalid_argument("a refinement box's size must be positive");

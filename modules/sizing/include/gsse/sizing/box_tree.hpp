@@ -70,6 +70,15 @@ class box_tree {
   /// min over items of value + slope * distance(x, box), or +infinity when empty; `cap` is a known
   /// upper bound (nodes that cannot beat it are skipped).
   double graded_min(const point<D>& x, double slope, double cap = std::numeric_limits<double>::infinity()) const {
+    return graded_min(x, slope, cap, [](std::uint32_t, double box_distance2) { return box_distance2; });
+  }
+
+  /// min over items of value + slope * distance(x, item), where `distance2(i, d2)` is item i's
+  /// squared distance from x, given d2, its box's (no smaller: the item lies in its box). Asked
+  /// only for items whose box could beat the minimum so far, so an exact distance to the item
+  /// itself (a slanted triangle, whose box reaches far off it) costs little more than the box's.
+  template <class Distance2>
+  double graded_min(const point<D>& x, double slope, double cap, Distance2&& distance2) const {
     double best = cap;
     if (nodes_.empty()) return best;
     auto bound = [&](const node& n) { return n.min_value + slope * std::sqrt(n.box.distance2(x)); };
@@ -82,7 +91,9 @@ class box_tree {
       if (n.leaf) {
         for (std::uint32_t k = n.a; k < n.b; ++k) {
           const std::uint32_t i = order_[k];
-          best = std::min(best, values_[i] + slope * std::sqrt(boxes_[i].distance2(x)));
+          const double d2 = boxes_[i].distance2(x);
+          if (values_[i] + slope * std::sqrt(d2) >= best) continue;
+          best = std::min(best, values_[i] + slope * std::sqrt(distance2(i, d2)));
         }
         continue;
       }

@@ -16,21 +16,34 @@ point<D> segment_closest(const point<D>& a, const point<D>& b, const point<D>& q
   return a + t * e;
 }
 
-/// The point of the triangle abc nearest to q: the plane's foot if it is inside, else the
-/// nearest edge point.
+/// The point of the triangle abc nearest to q, by the Voronoi regions of its vertices and edges
+/// (dot products only; Ericson, Real-Time Collision Detection, 5.1.5). A triangle degenerate in
+/// double (the sine of its angle at a below 1e-6): the nearest point of its edges.
 inline point3 triangle_closest(const point3& a, const point3& b, const point3& c, const point3& q) {
-  const point3 u = b - a, v = c - a, n = cross(u, v);
-  const double nn = dot(n, n);
-  if (nn > 0) {
-    const point3 foot = q - (dot(q - a, n) / nn) * n;
-    const double l1 = dot(cross(b - foot, c - foot), n), l2 = dot(cross(c - foot, a - foot), n),
-                 l3 = dot(cross(a - foot, b - foot), n);
-    if (l1 >= 0 && l2 >= 0 && l3 >= 0) return foot;
+  const point3 ab = b - a, ac = c - a, aq = q - a;
+  const double abab = dot(ab, ab), acac = dot(ac, ac), abac = dot(ab, ac);
+  if (!(abab * acac - abac * abac > 1e-12 * abab * acac)) {  // degenerate: sin^2 of its angle at a below 1e-12
+    point3 best = segment_closest(a, b, q);
+    for (const point3& x : {segment_closest(b, c, q), segment_closest(c, a, q)})
+      if (squared_distance(x, q) < squared_distance(best, q)) best = x;
+    return best;
   }
-  point3 best = segment_closest(a, b, q);
-  for (const point3& x : {segment_closest(b, c, q), segment_closest(c, a, q)})
-    if (squared_distance(x, q) < squared_distance(best, q)) best = x;
-  return best;
+  const double d1 = dot(ab, aq), d2 = dot(ac, aq);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const point3 bq = q - b;
+  const double d3 = dot(ab, bq), d4 = dot(ac, bq);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
+  const point3 cq = q - c;
+  const double d5 = dot(ab, cq), d6 = dot(ac, cq);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double sum = va + vb + vc;
+  return a + (vb / sum) * ab + (vc / sum) * ac;
 }
 
 template <std::size_t D>

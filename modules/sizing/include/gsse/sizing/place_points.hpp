@@ -11,11 +11,13 @@
 // (deduplicated: levels share corners exactly, every coordinate, a cube's centre included, being
 // computed by one formula as the origin plus a dyadic multiple of one spacing, so points on one
 // lattice plane are exactly coplanar) are then taken greedily, coarse levels first, dropping a point that lies in no segment,
-// nearer than half its spacing to the boundary, or nearer to a point already taken than 0.8 of the
+// nearer than half its spacing or graded_keep h to the boundary, or nearer to a point already taken than 0.8 of the
 // smaller spacing or 0.55 h at its cube's centre (2D 0.5 h: without it a finer level's points
-// crowded a coarser one's, edges below h/2). Where h is the global size, a candidate nearer than
+// crowded a coarser one's, edges below h/2). A candidate dropped by graded_keep h alone is moved
+// graded_lift h off its nearest face and taken after the others when clear, in a segment and
+// 0.65 h from every point taken. Where h is the global size, a candidate nearer than
 // half its spacing to the boundary is moved 0.6 d off its nearest face instead and taken after all
-// the others when clear, in a segment and 0.65 h from every point taken (the uniform lattice's
+// those when clear, in a segment and 0.65 h from every point taken (the uniform lattice's
 // band, modules/placement/README.md step 4). The classification is parallel; the greedy pass is sequential, in a fixed
 // order, so the points are the same for any thread count.
 #include <functional>
@@ -33,6 +35,19 @@ inline constexpr int no_segment = std::numeric_limits<int>::min();
 /// and the graded points alike: a point dropped as too near a face is moved `band_lift` times the
 /// spacing off it, and taken when `band_gap` times the size from every point taken.
 inline constexpr double band_lift = 0.6, band_gap = 0.65;
+
+/// Graded points keep `graded_keep` h (h at their cube's centre) off every face as well as half
+/// their spacing d (in (h/2, h], so half of it alone let a point come a quarter of h near a
+/// slanted facet); a candidate too near by that rule only is moved `graded_lift` h off its nearest
+/// face and taken, as a band point is, when clear and band_gap h from every point taken. Chosen
+/// on the benchmark structures, each also rotated, the stack and the 2D MOSFET with --grade 1.3
+/// (docs/benchmarks.md, forty-third part): 3D 0.4/0.45 and 0.45/0.5 left edges below h/2 at
+/// 0.5-1.6% and 0.4-1.1% (half the spacing alone: 0.8-5.0%), 0.45 h without the move up to
+/// 119 edges above 1.5 h on the MOSFET; 2D 0.45/0.55 left 4 of 4,077 above 1.5 h.
+template <std::size_t D>
+inline constexpr double graded_keep = D == 3 ? 0.45 : 0.4;
+template <std::size_t D>
+inline constexpr double graded_lift = D == 3 ? 0.55 : 0.45;
 
 template <std::size_t D>
 struct placement {

@@ -115,7 +115,7 @@ class size_field {
   /// Sources of the graded minimum (boundary face pieces), for statistics and tests.
   std::size_t sources() const {
     std::size_t n = faces_.size();
-    for (const auto& [slope, tree] : layers_) n += tree.size();
+    for (const auto& L : layers_) n += L.tree.size();
     return n;
   }
 
@@ -124,9 +124,18 @@ class size_field {
   friend struct field_builder;
   double global_ = unbounded, slope_ = 0.3, max_slope_ = 0.3, minimum_ = unbounded;
   bool uniform_ = true;
-  box_tree<D> faces_;                       // boundary face pieces with their values
-  // interface layers with a growth rate of their own: (slope, their face pieces), by slope
-  std::vector<std::pair<double, box_tree<D>>> layers_;
+  // boundary face pieces with their values: the tree over their boxes, and the pieces themselves
+  // (a term's distance is to its piece, not to the piece's box: a slanted piece's box reaches up to
+  // its radius off it, and the field came out smaller on a structure merely turned off the axes)
+  box_tree<D> faces_;
+  std::vector<std::array<point<D>, D>> face_pieces_;
+  // interface layers with a growth rate of their own, by slope
+  struct layer {
+    double slope;
+    box_tree<D> tree;
+    std::vector<std::array<point<D>, D>> pieces;
+  };
+  std::vector<layer> layers_;
   std::vector<typename spec<D>::box> boxes_;
   std::map<int, double> segment_size_;
   std::shared_ptr<const typename spec<D>::background_mesh> background_;
