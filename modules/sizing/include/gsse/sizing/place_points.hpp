@@ -41,9 +41,11 @@ inline constexpr double band_lift = 0.6, band_gap = 0.65;
 /// slanted facet); a candidate too near by that rule only is moved `graded_lift` h off its nearest
 /// face and taken, as a band point is, when clear and band_gap h from every point taken. Chosen
 /// on the benchmark structures, each also rotated, the stack and the 2D MOSFET with --grade 1.3
-/// (docs/benchmarks.md, forty-third part): 3D 0.4/0.45 and 0.45/0.5 left edges below h/2 at
-/// 0.5-1.6% and 0.4-1.1% (half the spacing alone: 0.8-5.0%), 0.45 h without the move up to
-/// 119 edges above 1.5 h on the MOSFET; 2D 0.45/0.55 left 4 of 4,077 above 1.5 h.
+/// (docs/benchmarks.md, forty-third part). 3D, edges below h/2: half the spacing alone 0.8-5.0%;
+/// 0.4/0.45 0.5-1.6%; 0.45/0.5 0.4-1.1%; 0.45/0.55, taken, 0.4-1.0% with at most 4 of about 2
+/// million edges above 1.5 h; 0.45 h without the move left up to 119 above 1.5 h (the MOSFET).
+/// 2D: 0.4/0.45, taken, 3.2% below half and 1 edge above 1.5 h on the 2D MOSFET (half the
+/// spacing alone: 6.0%, 1); 0.45/0.55 1.6% but 4 of 4,077 above.
 template <std::size_t D>
 inline constexpr double graded_keep = D == 3 ? 0.45 : 0.4;
 template <std::size_t D>
