@@ -217,14 +217,14 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
     // to leave holes (edges above 1.5 h), docs/benchmarks.md thirty-seventh part
     if (ok[k] == 1 && free_of(all[k].q, all[k], D == 3 ? 0.55 : 0.5)) take(all[k].q, all[k], all[k].off);
   }
-  // the band next to the boundary where h is the global size (modules/placement/README.md, step 4,
-  // as the uniform lattice): a candidate dropped as too near a face, moved `band_lift` d off it,
-  // taken in candidate order when clear, in a segment and band_gap h from every point taken
   // the points moved off a face by graded_lift, taken in candidate order when band_gap h from
   // every point taken, before the band's
   for (std::size_t k = 0; k < all.size(); ++k)
     if (ok[k] == 3 && free_of(moved[k], all[k], band_gap))
       take(moved[k], all[k], all[k].off + std::sqrt(squared_distance(moved[k], all[k].q)) * (1 + 1e-9));
+  // the band next to the boundary where h is the global size (modules/placement/README.md, step 4,
+  // as the uniform lattice): a candidate dropped as too near a face, moved `band_lift` d off it,
+  // taken in candidate order when clear, in a segment and band_gap h from every point taken
   for (std::size_t k = 0; k < all.size(); ++k)
     if (ok[k] == 2 && free_of(moved[k], all[k], band_gap))  // moved at most band_lift d
       take(moved[k], all[k], all[k].off + band_lift * std::ldexp(d0, -all[k].level) * (1 + 1e-9));
