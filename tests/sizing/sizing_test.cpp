@@ -439,8 +439,8 @@ BOOST_AUTO_TEST_CASE(field_is_lipschitz) {
 // it). Two parallel triangles 0.001 apart and the same turned off the axes (support/stack.hpp's
 // rotation): h at 2,000 points and at their turned images agree to rounding. With the boxes'
 // distances they differed by up to 17% (this test then failed), and the rotated MOSFET took
-// 364,353 points with --grade 1.3 where the axis-aligned one took 255,732 (now 249,169 and
-// 255,577; docs/benchmarks.md, forty-third part).
+// 364,353 points with --grade 1.3 where the axis-aligned one took 255,732 (with this change
+// alone 249,169 and 255,577; docs/benchmarks.md, forty-third part).
 BOOST_AUTO_TEST_CASE(field_is_the_same_when_turned) {
   sizing::spec<3> s;
   s.grade = 1.3;

@@ -13,8 +13,8 @@
 // lattice plane are exactly coplanar) are then taken greedily, coarse levels first, dropping a point that lies in no segment,
 // nearer than half its spacing or graded_keep h to the boundary, or nearer to a point already taken than 0.8 of the
 // smaller spacing or 0.55 h at its cube's centre (2D 0.5 h: without it a finer level's points
-// crowded a coarser one's, edges below h/2). A candidate dropped by graded_keep h alone is moved
-// graded_lift h off its nearest face and taken after the others when clear, in a segment and
+// crowded a coarser one's, edges below h/2). A candidate dropped by graded_keep h alone is, where
+// the placement has `away`, moved graded_lift h off its nearest face and taken after the others when clear, in a segment and
 // 0.65 h from every point taken. Where h is the global size, a candidate nearer than
 // half its spacing to the boundary is moved 0.6 d off its nearest face instead and taken after all
 // those when clear, in a segment and 0.65 h from every point taken (the uniform lattice's
