@@ -609,7 +609,7 @@ BOOST_AUTO_TEST_CASE(graded_lattice_coordinates_are_exact) {
   where.segment_of = [](const point3&) { return 1; };
   where.clear = [](const point3&, double) { return true; };
   const point3 fine{0.3137, 0.2719, 0.1893};
-  auto h = [&](const point3& x, int) { return 0.004 + 0.35 * distance(x, fine); };
+  auto h = [&](const point3& x, int, double cap = sizing::unbounded) { return std::min(cap, 0.004 + 0.35 * distance(x, fine)); };
   const sizing::aabb<3> box{{0.0, 0.0, 0.0}, {0.7, 0.5, 0.4}};
   const auto pts = sizing::place_points<3>(h, 0.2, box, where, 2);
   BOOST_TEST_REQUIRE(pts.size() > 2000u);
@@ -634,7 +634,7 @@ BOOST_AUTO_TEST_CASE(graded_lattice_coordinates_are_exact) {
 BOOST_AUTO_TEST_CASE(placed_points_bound_h_from_below) {
   const double slope = 0.35;
   const point3 fine{0.3137, 0.2719, 0.1893};
-  auto h = [&](const point3& x, int) { return 0.01 + slope * distance(x, fine); };
+  auto h = [&](const point3& x, int, double cap = sizing::unbounded) { return std::min(cap, 0.01 + slope * distance(x, fine)); };
   // the segment above a slanted plane (distances to it vary continuously, so that moved points
   // find room between the lattice's)
   const double nn = std::sqrt(0.2 * 0.2 + 0.1 * 0.1 + 1.0);

@@ -178,12 +178,14 @@ class state {
       return static_cast<bool>(opt_.local_size3);
   }
   bool sized() const { return opt_.size > 0 || graded(); }
-  /// The target size at q: the size field's value, or the uniform size (0: none).
-  double size_at(const point<D>& q) const {
+  /// The target size at q: the size field's value, or the uniform size (0: none). With a cap, the
+  /// size field's min(h(q), cap) (the same comparisons against any bound up to cap, for a search
+  /// that stops at the cap).
+  double size_at(const point<D>& q, double cap = std::numeric_limits<double>::infinity()) const {
     if constexpr (D == 2) {
-      if (opt_.local_size2) return opt_.local_size2(q);
+      if (opt_.local_size2) return opt_.local_size2(q, cap);
     } else {
-      if (opt_.local_size3) return opt_.local_size3(q);
+      if (opt_.local_size3) return opt_.local_size3(q, cap);
     }
     return opt_.size;
   }
@@ -905,7 +907,8 @@ class state3 : public state<3> {
           if (wn != 0) r = std::min(r, h / 3);
         }
       });
-      if (sized()) r = std::min(r, size_at(p[v]) / 2);  // the pieces inside are not split for size
+      // the pieces inside are not split for size (min(h, 2r) / 2 is min(h / 2, r): halving is exact)
+      if (sized()) r = std::min(r, size_at(p[v], 2 * r) / 2);
       if (r > 0 && r < 1e300) ball_[v] = rules::snap_to_shell(r * (1 - 1e-8));
     }
   }
@@ -1545,9 +1548,12 @@ class state3 : public state<3> {
         if (sized() && !known_clean) {  // clean: was not too large either, and has not changed
           const point3 u = p[T[1]] - p[T[0]], v = p[T[2]] - p[T[0]], z = p[T[2]] - p[T[1]], n = cross(u, v);
           // R^2 = |u|^2 |v|^2 |z|^2 / (4 |n|^2) against size^2 / 3 (graded: the size at the
-          // circumcentre)
-          const double h = graded() ? size_at(cc) : opt_.size;
-          too_big = 3 * dot(u, u) * dot(v, v) * dot(z, z) > 4 * dot(n, n) * h * h * (1 + 2e-9);
+          // circumcentre, asked only up to a cap a millionth above sqrt 3 R: a size at or above
+          // the cap clears the face as h itself would, and the capped search ends far sooner
+          // where the face is well below the size)
+          const double lhs = 3 * dot(u, u) * dot(v, v) * dot(z, z), nn4 = 4 * dot(n, n);
+          const double h = graded() ? size_at(cc, nn4 > 0 ? std::sqrt(lhs / nn4) * (1 + 1e-6) : std::numeric_limits<double>::infinity()) : opt_.size;
+          too_big = lhs > nn4 * h * h * (1 + 2e-9);
         }
         S.was_clean[t] = y == no_vertex && !too_big;
         if (y != no_vertex || too_big) mine.push_back({w.f, static_cast<std::uint32_t>(t), y});
@@ -2178,7 +2184,8 @@ class state3 : public state<3> {
       };
       const double extent = std::sqrt(squared_distance(box.lo, box.hi));
       const double d0 = opt_.size > 0 ? std::min(opt_.size, extent) : 0.5 * extent;
-      const auto pts = sizing::place_points<2>([&](const point2& x, int) { return size_at(lift(x)); }, d0, box, where, 1);
+      const auto pts = sizing::place_points<2>([&](const point2& x, int, double cap) { return size_at(lift(x), cap); }, d0, box,
+                                               where, 1, 1.0, false, sizing::unbounded, opt_.local_slope);
       std::vector<point3> mine;
       mine.reserve(pts.size());
       for (const auto& x : pts) mine.push_back(lift(x));

@@ -453,9 +453,10 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
       volume = refined_interior ? lattice_points(m, 0, cloud, r.dropped_points, o.threads, false)
                                 : field_points(m, field, cloud, r.dropped_points, o.threads, o.quality ? &volume_lower : nullptr);
       if constexpr (D == 2)
-        co.local_size2 = [&field](const point2& x) { return field(x); };
+        co.local_size2 = [&field](const point2& x, double cap) { return field.capped(x, cap); };
       else
-        co.local_size3 = [&field](const point3& x) { return field(x); };
+        co.local_size3 = [&field](const point3& x, double cap) { return field.capped(x, cap); };
+      if (std::isfinite(field.slope())) co.local_slope = field.slope();
     }
   } else {
     volume = size_points<D>{}(p, o.size, cloud, r.dropped_points, co, !creating && !refined_interior);

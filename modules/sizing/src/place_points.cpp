@@ -31,12 +31,16 @@ std::vector<point<D>> place_points(const size_field<D>& h, const aabb<D>& box, c
   const double extent = std::sqrt(squared_distance(box.lo, box.hi));
   const double d0 = std::isfinite(h.global()) ? std::min(h.global(), extent) : 0.5 * extent;
   const bool bounded = std::isfinite(h.slope());
-  return place_points<D>([&h](const point<D>& x, int seg) { return seg == no_segment ? h(x) : h(x, seg); }, d0, box,
+  auto hx = [&h](const point<D>& x, int seg, double cap) {
+    const double v = h.capped(x, cap);
+    return seg == no_segment ? v : std::min(v, h.segment_maximum(seg));
+  };
+  return place_points<D>(hx, d0, box,
                          where, threads, 1.0, true, h.global(), bounded ? h.slope() : 0.0, bounded ? lower : nullptr);
 }
 
 template <std::size_t D>
-std::vector<point<D>> place_points(const std::function<double(const point<D>&, int)>& h, double d0, const aabb<D>& box,
+std::vector<point<D>> place_points(const std::function<double(const point<D>&, int, double)>& h, double d0, const aabb<D>& box,
                                    const placement<D>& where, unsigned threads, double stretch,
                                    bool parent, double band_from, double slope, std::vector<double>* lower) {
   const double extent = std::sqrt(squared_distance(box.lo, box.hi));
@@ -72,8 +76,8 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
     auto& out = per_root[r];
     std::uint64_t order = 0;
     // cube at `level` with min corner index i (in units of a0 / 2^level)
-    // hp: h at the parent cube's centre (unbounded at a root)
-    auto visit = [&](auto&& self, const std::array<std::int64_t, D>& i, int level, double hp) -> void {
+    // hp: h at the parent cube's centre cp, in segment sp (unbounded at a root)
+    auto visit = [&](auto&& self, const std::array<std::int64_t, D>& i, int level, double hp, const point<D>& cp, int sp) -> void {
       const double a = std::ldexp(a0, -level), d = std::ldexp(d0, -level);
       // the centre as the next level's corner 2i + 1, by the same formula: lo + a / 2 rounds
       // differently, and centres then sat an ulp off the plane of the corners beside them, whose
@@ -88,7 +92,12 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
       for (std::size_t k = 0; k < D; ++k)
         if (lo[k] > box.hi[k] + a || lo[k] + a < box.lo[k] - a) return;
       const int seg = where.segment_of(c);
-      const double hc = h(c, seg);
+      // asked up to a cap that h cannot reach: in the parent's segment, h(c) <= h(cp) + slope |c -
+      // cp| (h is Lipschitz, a segment's maximum one constant more in the minimum), so the value
+      // is h itself, found by a search that skips every term above the cap from the start (the
+      // rotated FinFET with --grade 1.3: placement queries about 2x faster, the same points)
+      const bool capped = std::isfinite(hp) && sp == seg && slope > 0 && std::isfinite(slope);
+      const double hc = h(c, seg, capped ? (hp + slope * distance(c, cp)) * (1 + 1e-9) : unbounded);
       // the coarsest level whose spacing is at most stretch * h (1: spacings in (h/2, h]); with
       // `parent`, h the smaller of the centre's and the parent's centre's (a corner of this cube):
       // where h dips across a cube (a thin layer whose size is smallest at its faces) the centre
@@ -99,7 +108,7 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
         for (unsigned m = 0; m < (1u << D); ++m) {
           std::array<std::int64_t, D> j;
           for (std::size_t k = 0; k < D; ++k) j[k] = 2 * i[k] + ((m >> k) & 1u);
-          self(self, j, level + 1, hc);
+          self(self, j, level + 1, hc, c, seg);
         }
         return;
       }
@@ -130,7 +139,7 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
         }
       }
     };
-    visit(visit, i0, 0, unbounded);
+    visit(visit, i0, 0, unbounded, point<D>{}, no_segment);
   }, [&](std::size_t) { return 1.0; });
   std::vector<candidate<D>> all;
   {
@@ -232,9 +241,9 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
 }
 
 template std::vector<point2> place_points<2>(const size_field<2>&, const aabb<2>&, const placement<2>&, unsigned, std::vector<double>*);
-template std::vector<point2> place_points<2>(const std::function<double(const point2&, int)>&, double, const aabb<2>&,
+template std::vector<point2> place_points<2>(const std::function<double(const point2&, int, double)>&, double, const aabb<2>&,
                                              const placement<2>&, unsigned, double, bool, double, double, std::vector<double>*);
-template std::vector<point3> place_points<3>(const std::function<double(const point3&, int)>&, double, const aabb<3>&,
+template std::vector<point3> place_points<3>(const std::function<double(const point3&, int, double)>&, double, const aabb<3>&,
                                              const placement<3>&, unsigned, double, bool, double, double, std::vector<double>*);
 template std::vector<point3> place_points<3>(const size_field<3>&, const aabb<3>&, const placement<3>&, unsigned, std::vector<double>*);
 

@@ -24,11 +24,16 @@ class conform_error : public std::runtime_error {
 
 struct options {
   double size = 0;                   // > 0: also split boundary elements longer than this
-  // a size that varies (the size field of modules/sizing): h(x) at a point of the boundary. Set,
+  // a size that varies (the size field of modules/sizing): min(h(x), cap) at a point x of the
+  // boundary (sizing::size_field::capped; the conformer passes infinity where it needs h itself,
+  // a cap where it only compares h with a bound, which a capped search answers far sooner). Set,
   // it replaces `size`: PLC edges are split so that their pieces follow it, subfacets are split
   // while their circumradius exceeds h(circumcentre)/sqrt 3, and no facet lattice is seeded
-  std::function<double(const point2&)> local_size2;
-  std::function<double(const point3&)> local_size3;
+  std::function<double(const point2&, double cap)> local_size2;
+  std::function<double(const point3&, double cap)> local_size3;
+  // the size's Lipschitz constant where known (0: unknown): the graded facet seeding then caps its
+  // queries by the parent cube's value (sizing::place_points)
+  double local_slope = 0;
   std::size_t max_steiner = 2'000'000;  // cap on inserted boundary points: a runaway becomes an error
   const rules::rule_set* rules = nullptr;  // nullptr: the embedded default conformer rules
   unsigned threads = 1;                    // subfacet encroachment checks run in parallel

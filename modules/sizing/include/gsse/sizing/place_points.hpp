@@ -69,17 +69,21 @@ template <std::size_t D>
 std::vector<point<D>> place_points(const size_field<D>& h, const aabb<D>& box, const placement<D>& where,
                                    unsigned threads = 1, std::vector<double>* lower = nullptr);
 
-/// The same for any size function h(x, segment) (segment: no_segment where unknown); `d0` is the
+/// The same for any size function h(x, segment, cap) = min(h(x, segment), cap) (segment: no_segment
+/// where unknown; cap: infinity where h itself is asked, else a bound h does not reach, which lets
+/// a search skip more: size_field::capped); `d0` is the
 /// coarsest spacing (the largest size that matters). The conformer seeds graded facets with it in
 /// each facet's plane. `parent`: a cube's spacing also at most stretch * h at its parent cube's
 /// centre (one of its corners), as the size field's placement asks; off, h at its centre alone.
 /// `band_from`: a candidate too near a face whose cube's size is at least this (the size field's
 /// placement: its global size, where h is flat) is moved off the face (`placement::away`) and
 /// taken when clear, as the uniform lattice's band (modules/placement/README.md, step 4).
+/// `slope`: h's Lipschitz constant where known (0: unknown); then a cube's query is capped by its
+/// parent's value (in the same segment) plus slope times their centres' distance.
 /// `lower`, if given: per point returned, h at its cube's centre less `slope` times the point's
 /// distance from that centre at most (a lower bound of h there when h is Lipschitz with `slope`).
 template <std::size_t D>
-std::vector<point<D>> place_points(const std::function<double(const point<D>&, int)>& h, double d0, const aabb<D>& box,
+std::vector<point<D>> place_points(const std::function<double(const point<D>&, int, double)>& h, double d0, const aabb<D>& box,
                                    const placement<D>& where, unsigned threads = 1, double stretch = 1.0,
                                    bool parent = false, double band_from = unbounded, double slope = 0,
                                    std::vector<double>* lower = nullptr);
