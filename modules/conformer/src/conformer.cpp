@@ -2183,6 +2183,8 @@ class state3 : public state<3> {
                           [&](std::uint32_t g) { return sizing::segment_distance2(pieces[g][0], pieces[g][1], x) >= keep * keep; });
       };
       const double extent = std::sqrt(squared_distance(box.lo, box.hi));
+      // lift shifts a point by the wall shear, in the plane; clear measures in the unshifted frame
+      where.slack = 2 * std::sqrt(dot(shift, shift)) + 1e-9 * extent;
       const double d0 = opt_.size > 0 ? std::min(opt_.size, extent) : 0.5 * extent;
       const auto pts = sizing::place_points<2>([&](const point2& x, int, double cap) { return size_at(lift(x), cap); }, d0, box,
                                                where, 1, 1.0, false, sizing::unbounded, opt_.local_slope);

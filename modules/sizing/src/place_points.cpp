@@ -92,6 +92,13 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
       for (std::size_t k = 0; k < D; ++k)
         if (lo[k] > box.hi[k] + a || lo[k] + a < box.lo[k] - a) return;
       const int seg = where.segment_of(c);
+      // a cube whose centre lies in no segment and that no boundary face comes near (within its
+      // circumradius, every candidate of it and of its children inside, plus placement::slack)
+      // lies wholly in no segment:
+      // all those candidates would be dropped, so it is neither asked nor divided (a CAD part's
+      // box is mostly outside it). The points taken are the same: a point dropped here is outside
+      // wherever else it is a candidate
+      if (seg == no_segment && where.clear(c, std::sqrt(static_cast<double>(D)) * 0.5 * a * (1 + 1e-6) + where.slack)) return;
       // asked up to a cap that h cannot reach: in the parent's segment, h(c) <= h(cp) + slope |c -
       // cp| (h is Lipschitz, a segment's maximum one constant more in the minimum), so the value
       // is h itself, found by a search that skips every term above the cap from the start (the

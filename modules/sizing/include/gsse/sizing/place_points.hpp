@@ -60,6 +60,11 @@ struct placement {
   /// Optional: q moved to `lift` off its nearest face (from the closest point of it, through q)
   /// if a face lies within `keep` of q; nothing otherwise.
   std::function<std::optional<point<D>>(const point<D>&, double keep, double lift)> away;
+  /// How far `segment_of` may see the boundary from where `clear` sees it (0: the same boundary;
+  /// the conformer's facet seeding locates its points shifted by a facet's wall shear). A cube
+  /// whose centre is in no segment and which is clear by its circumradius plus this lies wholly
+  /// in no segment: it is skipped, neither asked for h nor divided.
+  double slack = 0;
 };
 
 /// `lower`, if given: per point returned, a lower bound of h there (h at the centre of the cube
