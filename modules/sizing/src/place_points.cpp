@@ -8,6 +8,7 @@
 
 #include "gsse/geometry/hash_grid.hpp"
 #include "gsse/traversal/for_each.hpp"
+#include "gsse/traversal/parallel_sort.hpp"
 
 namespace gsse::sizing {
 namespace {
@@ -161,12 +162,14 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
   }
   // exact duplicates (shared corners) kept once, at their first place in (level, order)
   auto first = [](const candidate<D>& x, const candidate<D>& y) { return x.level < y.level || (x.level == y.level && x.order < y.order); };
-  std::sort(all.begin(), all.end(), [&](const candidate<D>& x, const candidate<D>& y) {
+  // (both sorts in parallel: their keys are distinct, (point, level, order) and (level, order),
+  // so any sort gives the one order)
+  gsse::stable_sort(execution::par(threads), all.begin(), all.end(), [&](const candidate<D>& x, const candidate<D>& y) {
     if (x.q != y.q) return x.q < y.q;
     return first(x, y);
   });
   all.erase(std::unique(all.begin(), all.end(), [](const candidate<D>& x, const candidate<D>& y) { return x.q == y.q; }), all.end());
-  std::sort(all.begin(), all.end(), first);
+  gsse::stable_sort(execution::par(threads), all.begin(), all.end(), first);
   // classification in parallel: inside a segment and clear of the boundary by half the spacing
   // (1); or, where h at the cube's centre is at least `band_from`, too near a face but the point
   // moved off it is (2, the point in `moved`)
