@@ -666,6 +666,43 @@ BOOST_AUTO_TEST_CASE(placed_points_bound_h_from_below) {
   BOOST_TEST(sizing::place_points<3>(h, 0.2, box, where, 2, 1.0, true, 0.0).size() < pts.size());
 }
 
+// The placement skips cubes wholly outside every segment (centre in none, no face within their
+// circumradius) and caps each cube's query by its parent's value plus the slope times their
+// centres' distance. Neither may change a point: a ball-shaped segment in a box three quarters
+// outside it, placed with the skipping turned off (a placement::slack no cube is clear by) and
+// the caps off (slope 0), then with both on. Both must also do something: fewer queries, most
+// of them capped. (A skip that also dropped cubes a face comes near, or a cap below h, moves
+// points.)
+BOOST_AUTO_TEST_CASE(skipped_cubes_and_capped_queries_change_no_point) {
+  const point3 centre{0.41, 0.37, 0.33}, fine{0.5, 0.4, 0.3};
+  const double radius = 0.3, slope = 0.35;
+  std::size_t asked = 0, capped = 0;  // one thread: plain counters
+  auto h = [&](const point3& x, int, double cap) {
+    ++asked;
+    capped += std::isfinite(cap);
+    return std::min(cap, 0.01 + slope * distance(x, fine));
+  };
+  sizing::placement<3> where;
+  where.segment_of = [&](const point3& q) { return distance(q, centre) < radius ? 1 : sizing::no_segment; };
+  where.clear = [&](const point3& q, double keep) { return std::abs(distance(q, centre) - radius) >= keep; };
+  const sizing::aabb<3> box{{0.0, 0.0, 0.0}, {0.8, 0.8, 0.7}};
+  auto run = [&](double slack, double s, std::size_t& queries, std::size_t& with_cap) {
+    where.slack = slack;
+    asked = capped = 0;
+    auto pts = sizing::place_points<3>(h, 0.2, box, where, 1, 1.0, true, sizing::unbounded, s);
+    queries = asked, with_cap = capped;
+    return pts;
+  };
+  std::size_t asked_plain = 0, capped_plain = 0, asked_fast = 0, capped_fast = 0;
+  const auto plain = run(1e9, 0.0, asked_plain, capped_plain);
+  const auto fast = run(0.0, slope, asked_fast, capped_fast);
+  BOOST_TEST_REQUIRE(plain.size() > 1000u);
+  BOOST_TEST(capped_plain == 0u);
+  BOOST_TEST((plain == fast), plain.size() << " points without the skip and the caps, " << fast.size() << " with");
+  BOOST_TEST(asked_fast * 4 < asked_plain * 3, asked_fast << " queries with the skip, " << asked_plain << " without");
+  BOOST_TEST(capped_fast * 2 > asked_fast, capped_fast << " of " << asked_fast << " queries capped");
+}
+
 // An interface layer or a box with a growth rate of its own: the size grows away from it at that
 // rate (h = size + (g - 1) * distance), the others at the field's; the field's Lipschitz bound is
 // the largest rate less 1, and holds.
