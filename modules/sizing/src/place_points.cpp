@@ -32,12 +32,8 @@ std::vector<point<D>> place_points(const size_field<D>& h, const aabb<D>& box, c
   const double extent = std::sqrt(squared_distance(box.lo, box.hi));
   const double d0 = std::isfinite(h.global()) ? std::min(h.global(), extent) : 0.5 * extent;
   const bool bounded = std::isfinite(h.slope());
-  auto hx = [&h](const point<D>& x, int seg, double cap) {
-    const double v = h.capped(x, cap);
-    return seg == no_segment ? v : std::min(v, h.segment_maximum(seg));
-  };
-  return place_points<D>(hx, d0, box,
-                         where, threads, 1.0, true, h.global(), bounded ? h.slope() : 0.0, bounded ? lower : nullptr);
+  return place_points<D>([&h](const point<D>& x, int seg, double cap) { return seg == no_segment ? h.capped(x, cap) : h.capped(x, seg, cap); },
+                         d0, box, where, threads, 1.0, true, h.global(), bounded ? h.slope() : 0.0, bounded ? lower : nullptr);
 }
 
 template <std::size_t D>
@@ -95,15 +91,15 @@ std::vector<point<D>> place_points(const std::function<double(const point<D>&, i
       const int seg = where.segment_of(c);
       // a cube whose centre lies in no segment and that no boundary face comes near (within its
       // circumradius, every candidate of it and of its children inside, plus placement::slack)
-      // lies wholly in no segment:
-      // all those candidates would be dropped, so it is neither asked nor divided (a CAD part's
-      // box is mostly outside it). The points taken are the same: a point dropped here is outside
-      // wherever else it is a candidate
+      // lies wholly in no segment: all those candidates would be dropped, so it is neither asked
+      // nor divided (a CAD part's box is mostly outside it). The points taken are the same: a
+      // point dropped here is outside wherever else it is a candidate
       if (seg == no_segment && where.clear(c, std::sqrt(static_cast<double>(D)) * 0.5 * a * (1 + 1e-6) + where.slack)) return;
       // asked up to a cap that h cannot reach: in the parent's segment, h(c) <= h(cp) + slope |c -
       // cp| (h is Lipschitz, a segment's maximum one constant more in the minimum), so the value
-      // is h itself, found by a search that skips every term above the cap from the start (the
-      // rotated FinFET with --grade 1.3: placement queries about 2x faster, the same points)
+      // is h itself, found by a search that skips every term above the cap from the start (it
+      // gains little: the search finds the nearby terms first anyway; docs/benchmarks.md,
+      // forty-fourth part)
       const bool capped = std::isfinite(hp) && sp == seg && slope > 0 && std::isfinite(slope);
       const double hc = h(c, seg, capped ? (hp + slope * distance(c, cp)) * (1 + 1e-9) : unbounded);
       // the coarsest level whose spacing is at most stretch * h (1: spacings in (h/2, h]); with

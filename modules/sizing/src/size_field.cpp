@@ -98,9 +98,12 @@ double size_field<D>::capped(const point<D>& x, double cap) const {
 
 template <std::size_t D>
 double size_field<D>::operator()(const point<D>& x, int number) const {
-  double v = (*this)(x);
-  if (auto it = segment_size_.find(number); it != segment_size_.end()) v = std::min(v, it->second);
-  return v;
+  return capped(x, number, unbounded);
+}
+
+template <std::size_t D>
+double size_field<D>::capped(const point<D>& x, int number, double cap) const {
+  return std::min(capped(x, cap), segment_maximum(number));
 }
 
 namespace {
@@ -548,6 +551,10 @@ template double size_field<2>::operator()(const point2&) const;
 template double size_field<3>::operator()(const point3&) const;
 template double size_field<2>::operator()(const point2&, int) const;
 template double size_field<3>::operator()(const point3&, int) const;
+template double size_field<2>::capped(const point2&, double) const;
+template double size_field<3>::capped(const point3&, double) const;
+template double size_field<2>::capped(const point2&, int, double) const;
+template double size_field<3>::capped(const point3&, int, double) const;
 template void add_region_volumes<2>(spec<2>&, const plc<2>&);
 template void add_region_volumes<3>(spec<3>&, const plc<3>&);
 template size_field<2> build<2>(const boundary_view<2>&, const spec<2>&, unsigned,

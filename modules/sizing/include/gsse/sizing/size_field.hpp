@@ -98,6 +98,8 @@ class size_field {
   /// min(h(x), cap): h(x) itself where it lies below cap; the search skips every term that cannot
   /// go below cap, so a small cap asks far less than h(x) does (the refinement's edge rule).
   double capped(const point<D>& x, double cap) const;
+  /// min(h(x, number), cap), the same search (the placement's cubes).
+  double capped(const point<D>& x, int number, double cap) const;
   /// True if h is the global size everywhere (no other term binds anywhere): the lattice paths.
   bool uniform() const { return uniform_; }
   double global() const { return global_; }
