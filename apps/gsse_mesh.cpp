@@ -42,7 +42,7 @@ void usage(std::FILE* to) {
       "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
       "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly] [--msh 4.1|2.2] [--verify-tol R]\n"
       "                 [--grade G] [--no-feature-size] [--quality [B]] [--sliver-angle A]\n"
-      "                 [--acute-guard F] [--quality-rounds N] [--size-fit]\n"
+      "                 [--acute-guard F] [--quality-rounds N] [--size-fit] [--no-size-rounds]\n"
       "       gsse-mesh INPUT --check MESH [--threads N] [--quiet] [--verify-tol R]\n"
       "  INPUT    TetGen .poly/.smesh (3D), Triangle .poly (2D), or a closed surface: OFF, STL,\n"
       "           Gmsh .msh surface mesh (its volumes become segments)\n"
@@ -82,6 +82,9 @@ void usage(std::FILE* to) {
       "  --size-fit measure every edge against the size at its midpoint (the size field, or --size)\n"
       "           and report how many lie within [0.5, 1.5] of it, below and above, in the summary\n"
       "           and --stats (quality.size_fit); a pass over every edge, seconds at 5e5 points\n"
+      "  --no-size-rounds  3D with a size (--size, --grade) and without --quality: leave out the\n"
+      "           rounds that refine every element with an edge above 1.5 h at its midpoint (on by\n"
+      "           default: the lattice alone left up to 0.2% of the edges above, up to 1.67 h)\n"
       "  --verify-tol R  --verify with facet tolerance R (relative to the input's bounding-box\n"
       "           diagonal; default 1e-9; 0: face vertices exactly in their facets' planes, which\n"
       "           Steiner points on slanted facets cannot be)\n"
@@ -106,6 +109,7 @@ struct args {
   unsigned threads = 1;
   bool verify = false, verify_tol_given = false, quiet = false, no_merge = false, msh22 = false;
   bool size_fit = false;  // --size-fit
+  bool size_rounds = true;  // not --no-size-rounds
   std::size_t max_steiner = gsse::conformer::options{}.max_steiner;
 };
 
@@ -213,6 +217,7 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.threads = a.threads;
   o.verify = a.verify;
   o.size_fit = a.size_fit;
+  o.size_rounds = a.size_rounds;
   o.quality = a.quality;
   o.quality_bound = a.quality_bound;
   o.sliver_angle = a.sliver_angle;
@@ -288,9 +293,9 @@ int run(const gsse::plc<D>& p, const args& a) {
       throw std::runtime_error(out + ": unknown output format (use .vtu, .msh or .node)");
     r.times.push_back({"write", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});
   }
-  if (r.quality && !r.refinement.failure.empty())
-    std::fprintf(stderr, "gsse-mesh: warning: quality refinement stopped by a failed %s; the mesh is the round before, %zu elements above the bound\n",
-                 r.refinement.failure.c_str(), r.refinement.bad_left);
+  if ((r.quality || r.size_rounds) && !r.refinement.failure.empty())
+    std::fprintf(stderr, "gsse-mesh: warning: %s refinement stopped by a failed %s; the mesh is the round before, %zu elements above the bound\n",
+                 r.quality ? "quality" : "size", r.refinement.failure.c_str(), r.refinement.bad_left);
   const auto q = (!a.quiet || !a.stats.empty()) ? gsse::pipeline::measure(d, a.threads) : gsse::pipeline::quality{};
   const double shortest_in = gsse::shortest_input_edge(p);
   if (!a.quiet) {
@@ -339,11 +344,13 @@ int run(const gsse::plc<D>& p, const args& a) {
     } else if (a.size_fit) {
       std::printf("  size fit: no size to fit (give --size, --grade or region volumes)\n");
     }
-    if (r.quality) {
+    if (r.quality || r.size_rounds) {
       const auto& st = r.refinement;
-      std::printf("  refinement: %s after %zu rounds, %zu circumcentres inserted, %zu boundary faces split;\n"
-                  "           %zu elements left above the bound\n",
-                  st.converged ? "converged" : "stopped", st.rounds, st.inserted, st.split_requests, st.bad_left);
+      std::printf("  %s: %s after %zu rounds, %zu circumcentres inserted, %zu boundary faces split;\n"
+                  "           %zu elements left %s\n",
+                  r.quality ? "refinement" : "size rounds (edges above 1.5 h; --no-size-rounds: off)",
+                  st.converged ? "converged" : "stopped", st.rounds, st.inserted, st.split_requests, st.bad_left,
+                  r.quality ? "above the bound" : "with an edge above 1.5 h");
       if (st.excepted) {
         std::printf("           of those, %zu excepted at small input angles", st.excepted);
         if (st.below_floor) std::printf(" (%zu below the spacing floor)", st.below_floor);
@@ -396,8 +403,14 @@ int run(const gsse::plc<D>& p, const args& a) {
            << ", \"edges\": " << f.histogram[k] << "}";
       js << "]}";
     }
-    if (r.quality) {
-      js << ", \"refinement\": {\"bound\": " << gsse::refinement::ratio_bound(D, a.quality_bound) << ", \"converged\": "
+    if (r.quality || r.size_rounds) {
+      // size rounds: no shape bound ("bound": null), only edges above 1.5 h refined
+      js << ", \"refinement\": {\"for\": \"" << (r.quality ? "quality" : "size") << "\", \"bound\": ";
+      if (r.quality)
+        js << gsse::refinement::ratio_bound(D, a.quality_bound);
+      else
+        js << "null";
+      js << ", \"converged\": "
          << (r.refinement.converged ? "true" : "false") << ", \"rounds\": " << r.refinement.rounds
          << ", \"inserted\": " << r.refinement.inserted << ", \"boundary_splits\": " << r.refinement.split_requests
          << ", \"above_bound\": " << r.refinement.bad_left << ", \"excepted\": " << r.refinement.excepted << ", \"below_floor\": " << r.refinement.below_floor
@@ -410,7 +423,7 @@ int run(const gsse::plc<D>& p, const args& a) {
         js << "], \"elements\": " << r.refinement.excepted_near[k].second << "}";
       }
       js << "]"
-         << ", \"sliver_angle\": " << (D == 3 ? a.sliver_angle : 0.0) << ", \"failed\": " << (r.refinement.failure.empty() ? "false" : "true")
+         << ", \"sliver_angle\": " << (D == 3 && r.quality ? a.sliver_angle : 0.0) << ", \"failed\": " << (r.refinement.failure.empty() ? "false" : "true")
          << ", \"seconds\": {\"plan\": " << r.refinement.plan_seconds << ", \"conform\": " << r.refinement.conform_seconds
          << ", \"label\": " << r.refinement.label_seconds << ", \"mesh\": " << r.refinement.mesh_seconds << "}"
          << ", \"cavity_cells\": " << r.refinement.cavity_cells << ", \"cavity_made\": " << r.refinement.cavity_made
@@ -526,6 +539,8 @@ int main(int argc, char** argv) {
         a.no_feature = true;
       } else if (s == "--size-fit") {
         a.size_fit = true;
+      } else if (s == "--no-size-rounds") {
+        a.size_rounds = false;
       } else if (s == "--verify") {
         a.verify = true;
       } else if (s == "--no-merge") {

@@ -19,6 +19,8 @@
 #               `excepted`), the summary names the point; --quality-rounds 3 stops after 3 rounds
 #               (not converged); --acute-guard 0 excepts nothing.
 #  --size-fit   quality.size_fit in --stats equals the counts read back from the mesh written
+#  size rounds  3D --size without --quality: the summary's "size rounds" line, --stats'
+#               quality.refinement with "for": "size" and "bound": null; --no-size-rounds: neither
 #  overwrites   a run that would write over its own input, the input's sidecar (-o BASE.node
 #               beside BASE.poly writes BASE.json; --stats BASE.json) or the --cloud file, or
 #               write one file twice (--stats g.json with -o g.node), exits 1 before meshing with
@@ -304,6 +306,20 @@ out=$("$mesh" "$work/box.poly" --size 0.2 --size-fit -o "$work/fit2.vtu" 2>&1)
 [[ "$out" == *"size fit: "*" edges against the size at their midpoints"* ]] && ok "--size-fit: the summary's line" || bad "--size-fit: no summary line"
 out=$("$mesh" "$work/box.poly" --size-fit -o "$work/fit3.vtu" 2>&1)
 [[ "$out" == *"size fit: no size to fit"* ]] && ok "--size-fit without a size: says so" || bad "--size-fit without a size: '$out'"
+# the size rounds (3D, a size, no --quality): reported in the summary and --stats; off with
+# --no-size-rounds
+out=$("$mesh" "$work/box.poly" --size 0.2 -o "$work/sr.node" --stats "$work/sr.stats.json" 2>&1)
+got=$(/usr/bin/python3 -c '
+import json, sys
+r = json.load(open(sys.argv[1]))["quality"].get("refinement")
+print("ok" if r and r["for"] == "size" and r["bound"] is None and r["converged"] and r["above_bound"] == 0 else r)' "$work/sr.stats.json")
+[[ "$out" == *"size rounds (edges above 1.5 h"*"0 elements left with an edge above 1.5 h"* ]] && [ "$got" = ok ] \
+  && ok "size rounds: in the summary and --stats (for: size, bound: null)" || bad "size rounds: '$got', '$out'"
+out=$("$mesh" "$work/box.poly" --size 0.2 --no-size-rounds -o "$work/sr2.node" --stats "$work/sr2.stats.json" 2>&1)
+got=$(/usr/bin/python3 -c '
+import json, sys
+print("none" if "refinement" not in json.load(open(sys.argv[1]))["quality"] else "there")' "$work/sr2.stats.json")
+[[ "$out" != *"size rounds"* ]] && [ "$got" = none ] && ok "--no-size-rounds: no rounds" || bad "--no-size-rounds: '$got', '$out'"
 err=$("$mesh" "$work/box.poly" --check "$work/fit.node" --size-fit 2>&1 >/dev/null); rc=$?
 [ $rc = 2 ] && [[ "$err" == *"--size-fit"* ]] && ok "--check with --size-fit: exit 2" || bad "--check with --size-fit: exit $rc, '$err'"
 exit $fail

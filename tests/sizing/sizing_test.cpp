@@ -798,6 +798,7 @@ BOOST_AUTO_TEST_CASE(graded_points_keep_half_the_size_apart) {
     o.sizing3.grade = 1.3;
     o.sizing2.grade = 1.3;
     o.size_fit = true;
+    o.size_rounds = false;  // the placement alone
     o.verify = true;
     o.threads = 2;
     pl::report r;
@@ -830,6 +831,8 @@ BOOST_AUTO_TEST_CASE(graded_points_keep_half_the_size_apart) {
 // 2.9%). Since the field measures distances to its pieces themselves and graded points keep
 // graded_keep h off the faces where h is below the global size (forty-third part): 77 above
 // 1.5 h on the turned stack (1.67 h), below half 0.38% and 0.82%.
+// That is the placement alone (options::size_rounds off); the size rounds then leave none above
+// 1.5 h on either stack (graded_size_rounds_leave_no_edge_above_the_bound).
 BOOST_AUTO_TEST_CASE(graded_band_next_to_the_boundary) {
   for (bool rotated : {false, true}) {
     const char* what = rotated ? "turned stack" : "stack";
@@ -838,6 +841,7 @@ BOOST_AUTO_TEST_CASE(graded_band_next_to_the_boundary) {
     o.sizing3.grade = 1.3;
     o.size = 0.07;
     o.size_fit = true;
+    o.size_rounds = false;
     o.verify = true;
     o.threads = 2;
     pl::report r;
@@ -851,4 +855,48 @@ BOOST_AUTO_TEST_CASE(graded_band_next_to_the_boundary) {
     BOOST_TEST(f.max_ratio <= (rotated ? 1.69 : 1.5), what << ": the longest edge " << f.max_ratio << " h");
     BOOST_TEST(f.below_half * 100 <= 2 * f.edges, what << ": " << f.below_half << " of " << f.edges << " edges below half");
   }
+}
+
+// 3D with a size and without --quality, the size rounds (pipeline options::size_rounds, on by
+// default) refine every tetrahedron with an edge above 1.5 h at its midpoint, as --quality's edge
+// rule does, with no shape bound: on the stacks of graded_band_next_to_the_boundary (graded with a
+// global size; the placement alone leaves up to 77 edges above 1.5 h, up to 1.67 h; the rounds
+// insert 39 points on the turned one) none is left, the meshes verify, the rounds converge and are
+// reported, and the mesh is the same on 1 and 2 threads. Graded from the feature size alone, the
+// turned stack with a 1e-3 film has none above before the rounds, and they change nothing.
+BOOST_AUTO_TEST_CASE(graded_size_rounds_leave_no_edge_above_the_bound) {
+  auto run = [](const plc<3>& p, double size, unsigned threads, const std::string& what, pl::report& r) {
+    pl::options o;
+    o.graded = true;
+    o.sizing3.grade = 1.3;
+    o.size = size;
+    o.size_fit = true;
+    o.verify = true;
+    o.threads = threads;
+    auto d = pl::mesh(p, {}, o, r);
+    BOOST_TEST(r.problems.empty(), what << ": " << (r.problems.empty() ? "" : r.problems.front()));
+    BOOST_TEST_REQUIRE(r.size_measured);
+    BOOST_TEST(r.size_rounds, what);
+    BOOST_TEST(!r.quality, what);
+    BOOST_TEST(r.refinement.converged, what);
+    BOOST_TEST(r.refinement.bad_left == 0u, what);
+    const auto& f = r.size_fit;
+    BOOST_TEST_MESSAGE(what << ": " << f.edges << " edges, " << f.above << " above 1.5 h, the longest " << f.max_ratio << "; "
+                            << r.refinement.rounds << " rounds, " << r.refinement.inserted << " inserted, " << r.refinement.split_requests << " splits");
+    BOOST_TEST(f.edges > 10000u, what);
+    BOOST_TEST(f.above == 0u, what << ": " << f.above << " of " << f.edges << " edges above 1.5 h, the longest " << f.max_ratio);
+    return d;
+  };
+  for (bool rotated : {false, true}) {
+    const std::string what = rotated ? "turned stack" : "stack";
+    pl::report r1, r2;
+    const auto d1 = run(gsse::test::stack(1, {0, 0.4, 0.5, 1}, {}, rotated), 0.07, 1, what, r1);
+    const auto d2 = run(gsse::test::stack(1, {0, 0.4, 0.5, 1}, {}, rotated), 0.07, 2, what + ", 2 threads", r2);
+    BOOST_TEST((d1.points() == d2.points()), what);
+    BOOST_TEST(d1.segments().size() == d2.segments().size(), what);
+    for (std::size_t k = 0; k < d1.segments().size() && k < d2.segments().size(); ++k)
+      BOOST_TEST(std::ranges::equal(d1.segments()[k].cell_data(), d2.segments()[k].cell_data()), what << ": segment " << k);
+  }
+  pl::report r;
+  (void)run(stack(0.02, {0, 0.01, 0.011, 0.03}, {}, true), 0, 2, "turned film stack, feature size alone", r);
 }

@@ -2476,6 +2476,12 @@ boundary<3> session<3>::next(const boundary<3>& previous, const std::vector<poin
   m.s = std::move(s);
   return b;
 }
+template <>
+void session<2>::end() {}
+template <>
+void session<3>::end() {
+  impl_->s.reset();
+}
 template class session<2>;
 template class session<3>;
 

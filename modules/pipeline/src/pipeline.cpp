@@ -417,6 +417,9 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   // equilateral lattice leaves 30-30-120 triangles, and above 30 degrees each fix made the next
   // (the benchmark structures did not converge at 31-34 degrees with the lattice)
   const bool refined_interior = D == 2 && o.quality && !creating;
+  // 3D, a size without --quality: the refinement's rounds for size alone (options::size_rounds);
+  // decided once the field is known (a uniform --size, or a graded field)
+  bool size_alone = false;
   std::vector<point<D>> volume;
   std::vector<double> volume_lower;  // graded: a lower bound of h at each volume point (the placement's)
   sizing::size_field<D> field;
@@ -447,11 +450,13 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     r.uniform_size = field.uniform();
     r.min_size = field.minimum();
     r.size_sources = field.sources();
+    size_alone = D == 3 && !o.quality && o.size_rounds && (!field.uniform() || o.size > 0);
     if (field.uniform()) {
       volume = lattice_points(m, o.size, cloud, r.dropped_points, o.threads, o.size > 0 && !refined_interior);
     } else {
       volume = refined_interior ? lattice_points(m, 0, cloud, r.dropped_points, o.threads, false)
-                                : field_points(m, field, cloud, r.dropped_points, o.threads, o.quality ? &volume_lower : nullptr);
+                                : field_points(m, field, cloud, r.dropped_points, o.threads,
+                                               o.quality || size_alone ? &volume_lower : nullptr);
       if constexpr (D == 2)
         co.local_size2 = [&field](const point2& x, double cap) { return field.capped(x, cap); };
       else
@@ -461,14 +466,16 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   } else {
     volume = size_points<D>{}(p, o.size, cloud, r.dropped_points, co, !creating && !refined_interior);
     r.min_size = o.size;
+    size_alone = D == 3 && !o.quality && o.size_rounds && !creating && o.size > 0;
   }
+  const bool refining = o.quality || size_alone;
   r.volume_points = volume.size();
   lap("sizing");
   if (o.progress) o.progress("conforming the boundary (" + std::to_string(volume.size()) + " volume points)");
   // with --quality the conformer's state is kept for the refinement's first round (a session:
   // the same boundary as the conform stage, without a rebuild in the first round)
   std::optional<conformer::session<D>> session;
-  auto b = o.quality ? session.emplace(p, co).start(volume) : conform<D>{}(p, volume, co);
+  auto b = refining ? session.emplace(p, co).start(volume) : conform<D>{}(p, volume, co);
   r.steiner = b.steiner;
   lap("conform");
   auto l = conformer::label(b, p, o.threads);
@@ -484,7 +491,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     fo.too_far = o.too_far;
   }
   domain<D> d;
-  if (!o.quality) {
+  if (!refining) {
     d = mesh_segments<D>{creating ? &fo : nullptr, &r.creation}(b, l, o.threads);
   } else {
     // Delaunay refinement (modules/refinement): rounds of circumcentres and boundary splits, the
@@ -494,8 +501,9 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     auto cells = mesh_segments<D>::wrap(b, l, o.threads);
     lap("mesh");
     refinement::options ro;
-    ro.bound = o.quality_bound;
-    ro.sliver_angle = o.sliver_angle;
+    // size alone: no shape bound and no sliver rule, only the size rule below
+    ro.bound = size_alone ? std::numeric_limits<double>::infinity() : o.quality_bound;
+    ro.sliver_angle = size_alone ? 0.0 : o.sliver_angle;
     ro.acute_guard = o.acute_guard;
     ro.max_rounds = o.quality_rounds;
     ro.threads = o.threads;
@@ -522,11 +530,12 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
         try {
           sizing::check_feature_size<D>({before.points, b.plc_points, before.faces, before.face_source, {}, p.source}, budget, o.threads);
         } catch (const sizing::too_fine& e) {
-          throw std::runtime_error(p.source + ": --quality: the elements above the bound grew to " + std::to_string(bad) +
+          throw std::runtime_error(p.source + (size_alone ? ": the size rounds: the elements too large grew to " : ": --quality: the elements above the bound grew to ") + std::to_string(bad) +
                                    " in " + std::to_string(rounds) + " rounds, and the input has features far below the model's size" +
                                    (e.closest.empty() ? "" : ", " + e.closest) + " (their local feature size alone needs more than " +
                                    std::to_string(budget) +
-                                   " boundary pieces): the bound cannot be met there; thicken or remove them, or mesh without --quality");
+                                   (size_alone ? " boundary pieces): the size cannot be met there; thicken or remove them, or give a larger size"
+                                               : " boundary pieces): the bound cannot be met there; thicken or remove them, or mesh without --quality"));
         }
       };
     }
@@ -560,7 +569,8 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
       return mesh_segments<D>::assemble(bb.points, ll, std::move(cc), o.threads);
     };
     d = refinement::refine(p, b, l, std::move(cells), co, ro, m, r.refinement, &*session);
-    r.quality = true;
+    r.quality = o.quality;
+    r.size_rounds = size_alone;
     r.steiner = b.steiner;
   }
   // the input's markers on the faces that lie on marked facets (every boundary face is a mesh
@@ -575,7 +585,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     if (marker != 0) d.marked_faces().push_back({b.faces[f], marker});
   }
   d.marker_names() = p.marker_names;
-  lap(o.quality ? "quality" : "mesh");
+  lap(o.quality ? "quality" : size_alone ? "size" : "mesh");
   // the edges against the size they were made for: the field where there is one, else --size
   if (o.size_fit && (field_built || o.size > 0)) {
     r.size_fit = sizing::edge_fit<D>(d, field_built ? &field : nullptr, o.size, o.threads);

@@ -665,6 +665,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
     return first;
   };
   const double cos_sliver = std::cos(sliver * std::numbers::pi / 180), cos_flat = std::cos((180 - 2 * sliver) * std::numbers::pi / 180);
+  const bool size_alone = !std::isfinite(bound) && !(sliver > 0);
   for_each(execution::par(threads), ids, [&](std::size_t k) {
     char* flag = chunks[k].todo;
     for (std::size_t ci = 0; ci < chunks[k].cells.size(); ++ci) {
@@ -678,6 +679,27 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
           if (l2 < shortest) shortest = l2, si = i, sj = j;
           longest = std::max(longest, l2);
         }
+      // graded (3D, edge_sizes): each edge against 1.5 h at its midpoint, the field asked there
+      // (capped just above e / 1.5) only where the bound from its ends does not clear it
+      auto too_long = [&] {
+        if constexpr (D == 3) {
+          const double most = chunks[k].most;
+          for (std::size_t i = 0; i <= D; ++i)
+            for (std::size_t j = i + 1; j <= D; ++j) {
+              const double e = distance(p[c[i]], p[c[j]]);
+              if (e <= 1.5 * most && bounded && std::max(vh.lower[c[i]], vh.lower[c[j]]) >= clear_per_length * e) continue;
+              if (e > 1.5 * std::min(most, graded->h(0.5 * (p[c[i]] + p[c[j]]), e / 1.5 * (1 + 1e-9)))) return true;
+            }
+        }
+        return false;
+      };
+      // size alone (no shape bound, no sliver rule): a cell whose edges the graded field clears
+      // needs no circumball (the size rounds without --quality; the plan's time there is mostly
+      // the field's queries, so this gains little: rotated MOSFET graded 0.25 -> 0.21-0.23 s)
+      if (size_alone && ask_edges && !too_long()) {
+        if (flag) flag[ci] = 0;
+        continue;
+      }
       point<D> at;
       double r;
       const bool round = circumball(p, c, at, r);
@@ -697,18 +719,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       // circumradius of 0.65 h, above h / sqrt 3; the bound is 1.5 h), h at the circumcentre
       auto too_large = [&] {
         if constexpr (D == 3) {
-          if (ask_edges) {
-            // graded: each edge against 1.5 h at its midpoint (edge_sizes), the field asked there
-            // (capped just above e / 1.5) only where the bound from its ends does not clear it
-            const double most = chunks[k].most;
-            for (std::size_t i = 0; i <= D; ++i)
-              for (std::size_t j = i + 1; j <= D; ++j) {
-                const double e = distance(p[c[i]], p[c[j]]);
-                if (e <= 1.5 * most && bounded && std::max(vh.lower[c[i]], vh.lower[c[j]]) >= clear_per_length * e) continue;
-                if (e > 1.5 * std::min(most, graded->h(0.5 * (p[c[i]] + p[c[j]]), e / 1.5 * (1 + 1e-9)))) return true;
-              }
-            return false;
-          }
+          if (ask_edges) return too_long();
         }
         if (!size) return false;
         const double h = size(at);
@@ -1784,7 +1795,11 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     for (std::size_t r = 0; r < c.size(); ++r) kept[r].resize(c[r].size());
     return kept;
   };
-  auto balls = no_balls(cells);
+  // size alone (no shape bound, no sliver rule: the size rounds) keeps no balls: the plan asks
+  // few cells for theirs, the rounds are one or two, and the balls are 32 bytes a cell (the graded
+  // trench's 11 million cells: 350 MB)
+  const bool keep_balls = std::isfinite(bound) || (D == 3 && o.sliver_angle > 0);
+  auto balls = keep_balls ? no_balls(cells) : balls_by_region<D>{};
   runs_by_region<D> runs;  // built by remesh_cavities as it needs them
   // the conformer stays alive between rounds: each round's boundary work follows the points it
   // adds, not the size of the boundary (conformer::session)
@@ -1816,7 +1831,8 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       clock = now;
       return s;
     };
-    auto pl = plan_round(cells, b, bound, o.threads, size, D == 3 ? o.sliver_angle : 0.0, &l, &todo, o.acute_guard, &balls, &floor,
+    auto pl = plan_round(cells, b, bound, o.threads, size, D == 3 ? o.sliver_angle : 0.0, &l, &todo, o.acute_guard,
+                         keep_balls ? &balls : nullptr, &floor,
                          D == 3 ? o.graded3.get() : nullptr, &vertex_h);
     st.plan_seconds += lap();
     st.outside += pl.outside;
@@ -1843,7 +1859,8 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     st.inserted += pl.add.size();
     st.split_requests += pl.split.size();
     if (o.progress)
-      o.progress("quality round " + std::to_string(st.rounds) + ": " + std::to_string(pl.bad) + " elements above the bound, " +
+      o.progress((std::isfinite(bound) ? "quality round " : "size round ") + std::to_string(st.rounds) + ": " + std::to_string(pl.bad) +
+                 (std::isfinite(bound) ? " elements above the bound, " : " elements too large, ") +
                  std::to_string(pl.add.size()) + " circumcentres, " + std::to_string(pl.split.size()) + " boundary splits");
     // a round that fails (an error from the conformer, the labelling or the mesher) leaves the
     // last good mesh, its boundary and labels as they were; the failure is reported, not hidden
@@ -1855,13 +1872,13 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       // remesh_cavities changes cells and todo only when it succeeds, and a full meshing that
       // throws assigns nothing: the last good mesh survives a failed round without a copy
       std::size_t removed = 0, made = 0;
-      if (remesh_cavities(b, b2, l, l2, cells, o.threads, &removed, &made, &todo, &balls, &runs)) {
+      if (remesh_cavities(b, b2, l, l2, cells, o.threads, &removed, &made, &todo, keep_balls ? &balls : nullptr, &runs)) {
         st.cavity_cells += removed, st.cavity_made += made;
       } else {
         cells = mesh.wrap(b2, l2);
         spatial_order(cells, b2.points, o.threads);
         todo = all_todo(cells);
-        balls = no_balls(cells);
+        if (keep_balls) balls = no_balls(cells);
         runs.clear();
         ++st.full_remeshes;
       }
@@ -1875,6 +1892,13 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       break;
     }
   }
+  // what the rounds kept (the conformer's state too) is freed before the assembly, the run's
+  // peak (the balls alone are 32 bytes a cell)
+  balls_by_region<D>().swap(balls);
+  std::vector<std::vector<char>>().swap(todo);
+  runs_by_region<D>().swap(runs);
+  vertex_h = vertex_sizes{};
+  boundary_rounds.end();
   return mesh.assemble(b, l, std::move(cells));
 }
 

@@ -108,6 +108,9 @@ class session {
   session& operator=(const session&) = delete;
   boundary<D> start(const std::vector<point<D>>& volume);
   boundary<D> next(const boundary<D>& previous, const std::vector<point<D>>& added, const std::vector<std::size_t>& split);
+  /// Frees the kept state (the refinement calls it after its last round, before the mesh is
+  /// assembled: the state is the size of the boundary); a later next() resumes afresh.
+  void end();
 
  private:
   struct impl;

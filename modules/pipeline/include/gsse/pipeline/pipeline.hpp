@@ -45,6 +45,11 @@ struct options {
   double sliver_angle = refinement::options{}.sliver_angle;  // 3D, with quality: see refinement::options
   double acute_guard = refinement::options{}.acute_guard;  // 3D, with quality: see refinement::options
   std::size_t quality_rounds = 0;  // with quality: the round cap (0: refinement::options default)
+  // 3D, a size (`size` or a graded field) without `quality`: rounds of the refinement for size
+  // alone (no shape bound, no sliver rule) until no edge is longer than 1.5 h at its midpoint
+  // (report::size_rounds; the lattice and the front alone left up to 0.2% of the edges above it,
+  // up to 1.67 h; docs/benchmarks.md, forty-fifth part). false: the mesh as the lattice makes it
+  bool size_rounds = true;
   unsigned threads = 1;  // threads shared by the stages (0: every hardware thread, execution::thread_count)
   bool verify = false;   // run the library verifier (gsse::verify::check against the input PLC) at the end
   // measure every edge against the size at its midpoint at the end (report::size_fit; timed as
@@ -70,6 +75,7 @@ struct report {
   std::size_t size_sources = 0;  // boundary pieces carrying the field's local terms
   front::creation_stats creation{};  // fill::rules
   bool quality = false;              // options::quality was set
+  bool size_rounds = false;          // the refinement ran for size alone (options::size_rounds)
   refinement::stats refinement{};    // its rounds, insertions and the elements left above the bound
   bool size_measured = false;        // options::size_fit was set and there was a size to fit
   sizing::fit size_fit{};            // then: the edges against the size at their midpoints
