@@ -475,7 +475,9 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   // with --quality the conformer's state is kept for the refinement's first round (a session:
   // the same boundary as the conform stage, without a rebuild in the first round)
   std::optional<conformer::session<D>> session;
-  auto b = refining ? session.emplace(p, co).start(volume) : conform<D>{}(p, volume, co);
+  // (not for the size rounds: they are one or two, often none, and the kept state is the size of
+  // the boundary, held through the first mesh; their first round, if any, resumes instead)
+  auto b = o.quality ? session.emplace(p, co).start(volume) : conform<D>{}(p, volume, co);
   r.steiner = b.steiner;
   lap("conform");
   auto l = conformer::label(b, p, o.threads);
@@ -568,7 +570,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     m.assemble = [&](const conformer::boundary<D>& bb, const conformer::labelling& ll, refinement::cells_by_region<D> cc) {
       return mesh_segments<D>::assemble(bb.points, ll, std::move(cc), o.threads);
     };
-    d = refinement::refine(p, b, l, std::move(cells), co, ro, m, r.refinement, &*session);
+    d = refinement::refine(p, b, l, std::move(cells), co, ro, m, r.refinement, session ? &*session : nullptr);
     r.quality = o.quality;
     r.size_rounds = size_alone;
     r.steiner = b.steiner;

@@ -1788,17 +1788,21 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     for (std::size_t r = 0; r < c.size(); ++r) t[r].assign(c[r].size(), 1);
     return t;
   };
-  spatial_order(cells, b.points, o.threads);
+  // size alone (no shape bound, no sliver rule: the size rounds) keeps no balls: the plan asks
+  // few cells for theirs, the rounds are one or two, and the balls are 32 bytes a cell (the graded
+  // trench's 11 million cells: 350 MB)
+  const bool keep_balls = std::isfinite(bound) || (D == 3 && o.sliver_angle > 0);
+  // the cells in Morton order (the cavity search reads runs of them): not for size alone, whose
+  // one or two rounds re-fill a few cavities, while the order's keys and copy are 32 bytes a cell
+  // at the run's peak (the graded trench, 13 million cells: about 400 MB for a round that
+  // inserted one point); the front mesher's own order keeps neighbours mostly together
+  if (keep_balls) spatial_order(cells, b.points, o.threads);
   auto todo = all_todo(cells);
   auto no_balls = [](const cells_by_region<D>& c) {
     balls_by_region<D> kept(c.size());
     for (std::size_t r = 0; r < c.size(); ++r) kept[r].resize(c[r].size());
     return kept;
   };
-  // size alone (no shape bound, no sliver rule: the size rounds) keeps no balls: the plan asks
-  // few cells for theirs, the rounds are one or two, and the balls are 32 bytes a cell (the graded
-  // trench's 11 million cells: 350 MB)
-  const bool keep_balls = std::isfinite(bound) || (D == 3 && o.sliver_angle > 0);
   auto balls = keep_balls ? no_balls(cells) : balls_by_region<D>{};
   runs_by_region<D> runs;  // built by remesh_cavities as it needs them
   // the conformer stays alive between rounds: each round's boundary work follows the points it
