@@ -84,7 +84,7 @@ void usage(std::FILE* to) {
       "           and --stats (quality.size_fit); a pass over every edge, seconds at 5e5 points\n"
       "  --no-size-rounds  3D with a size (--size, --grade) and without --quality: leave out the\n"
       "           rounds that refine every element with an edge above 1.5 h at its midpoint (on by\n"
-      "           default: the lattice alone left up to 0.2% of the edges above, up to 1.67 h)\n"
+      "           default: the placement alone left up to 25 edges of 1.3e5 above, up to 1.65 h)\n"
       "  --verify-tol R  --verify with facet tolerance R (relative to the input's bounding-box\n"
       "           diagonal; default 1e-9; 0: face vertices exactly in their facets' planes, which\n"
       "           Steiner points on slanted facets cannot be)\n"

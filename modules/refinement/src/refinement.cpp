@@ -1790,12 +1790,12 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
   };
   // size alone (no shape bound, no sliver rule: the size rounds) keeps no balls: the plan asks
   // few cells for theirs, the rounds are one or two, and the balls are 32 bytes a cell (the graded
-  // trench's 11 million cells: 350 MB)
+  // trench's 11.1 million cells: 356 MB)
   const bool keep_balls = std::isfinite(bound) || (D == 3 && o.sliver_angle > 0);
   // the cells in Morton order (the cavity search reads runs of them): not for size alone, whose
   // one or two rounds re-fill a few cavities, while the order's keys and copy are 32 bytes a cell
-  // at the run's peak (the graded trench, 13 million cells: about 400 MB for a round that
-  // inserted one point); the front mesher's own order keeps neighbours mostly together
+  // at the run's peak (the graded trench's 11.1 million cells: 356 MB, for a round that inserted
+  // one point); the cavity search then reads runs in the front mesher's own order
   if (keep_balls) spatial_order(cells, b.points, o.threads);
   auto todo = all_todo(cells);
   auto no_balls = [](const cells_by_region<D>& c) {
