@@ -319,7 +319,7 @@ BOOST_AUTO_TEST_CASE(lattice_points_stay_in_the_segments) {
 // measured by sizing::edge_fit: at most 1 in 1,000 edges above 1.5 H (without the band: 965 of
 // 22,419, 688 of 23,592 and 19 of 5,342), none above 1.7 H, and the meshes verify. That is the
 // placement alone (options::size_rounds off). In 3D the size rounds then refine what is left:
-// none above 1.5 H (the placement alone leaves 0 and 3 on the stacks, up to 1.52 H).
+// none above 1.5 H (the placement alone leaves 3 and 6 on the stacks, up to 1.54 H).
 BOOST_AUTO_TEST_CASE(uniform_size_edges_next_to_the_boundary) {
   auto check = [](const auto& p, double H, bool rounds, const std::string& what) {
     constexpr std::size_t D = std::decay_t<decltype(p.points[0])>{}.size();
