@@ -51,6 +51,9 @@ namespace {
 /// encroached face below this radius-edge bound, of the nearest one at it and above (plan_round)
 constexpr double largest_face_below = 1.3;
 
+/// Refinement for size alone (the pipeline's size rounds): no radius-edge bound, no sliver rule.
+inline bool size_only(double bound, double sliver) { return !std::isfinite(bound) && !(sliver > 0); }
+
 template <std::size_t D>
 using cell_t = std::array<vertex_id, D + 1>;
 
@@ -665,7 +668,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
     return first;
   };
   const double cos_sliver = std::cos(sliver * std::numbers::pi / 180), cos_flat = std::cos((180 - 2 * sliver) * std::numbers::pi / 180);
-  const bool size_alone = !std::isfinite(bound) && !(sliver > 0);
+  const bool size_alone = size_only(bound, sliver);
   for_each(execution::par(threads), ids, [&](std::size_t k) {
     char* flag = chunks[k].todo;
     for (std::size_t ci = 0; ci < chunks[k].cells.size(); ++ci) {
@@ -1791,7 +1794,7 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
   // size alone (no shape bound, no sliver rule: the size rounds) keeps no balls: the plan asks
   // few cells for theirs, the rounds are one or two, and the balls are 32 bytes a cell (the graded
   // trench's 11.1 million cells: 356 MB)
-  const bool keep_balls = std::isfinite(bound) || (D == 3 && o.sliver_angle > 0);
+  const bool keep_balls = !size_only(bound, D == 3 ? o.sliver_angle : 0.0);
   // the cells in Morton order (the cavity search reads runs of them): not for size alone, whose
   // one or two rounds re-fill a few cavities, while the order's keys and copy are 32 bytes a cell
   // at the run's peak (the graded trench's 11.1 million cells: 356 MB, for a round that inserted
