@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# The size rounds (3D, a size without --quality; pipeline options::size_rounds) against the
-# placement alone (--no-size-rounds), on the benchmark structures axis-aligned and rotated, with a
-# uniform --size at the structure's 1e5 size and with --grade 1.3 from the feature size alone.
+# The size rounds (a size without --quality; pipeline options::size_rounds) against the
+# placement alone (--no-size-rounds), on the benchmark structures axis-aligned and rotated. 3D
+# (DIM=3, the default): a uniform --size at the structure's 1e5 size and --grade 1.3 from the
+# feature size alone; 2D (DIM=2): --size 0.005, and --grade 1.3 with --size 0.02 and 0.005.
 # For each: points, edges above 1.5 h and the longest (--size-fit, an untimed run), the rounds and
 # points they inserted, the fastest of REPEAT timed runs (wall seconds, without --size-fit) and its
 # peak memory. Usage:
-#   bench/size_rounds.sh GSSE_MESH [THREADS] [STRUCTURES...]     (REPEAT=3 by default)
+#   [DIM=2] bench/size_rounds.sh GSSE_MESH [THREADS] [STRUCTURES...]     (REPEAT=3 by default)
 # Needs ../shared/bench/structures.py and /usr/bin/python3.
 set -euo pipefail
 G=${1:?usage: size_rounds.sh GSSE_MESH [THREADS] [STRUCTURES...]}
@@ -13,6 +14,8 @@ T=${2:-2}
 shift $(( $# < 2 ? $# : 2 ))
 NAMES=${*:-mosfet diffusion trench finfet}
 REPEAT=${REPEAT:-3}
+DIM=${DIM:-3}
+[ "$DIM" = 2 ] || [ "$DIM" = 3 ] || { echo "DIM is 2 or 3" >&2; exit 2; }
 HERE=$(cd "$(dirname "$0")" && pwd)
 GEN=${GSSE_SHARED_DIR:-$HERE/../../shared}/bench/structures.py
 [ -f "$GEN" ] || { echo "needs $GEN" >&2; exit 2; }
@@ -25,8 +28,9 @@ for n in $NAMES; do
   for turn in plain rotated; do
     mkdir -p "$W/$turn"
     flag=""; [ "$turn" = rotated ] && flag=--rotate
-    /usr/bin/python3 "$GEN" "$n" --dim 3 $flag --out "$W/$turn" > /dev/null
-    for sizing in "--size ${H[$n]}" "--grade 1.3"; do
+    /usr/bin/python3 "$GEN" "$n" --dim "$DIM" $flag --out "$W/$turn" > /dev/null
+    if [ "$DIM" = 3 ]; then sizings=("--size ${H[$n]}" "--grade 1.3"); else sizings=("--size 0.005" "--size 0.02 --grade 1.3" "--size 0.005 --grade 1.3"); fi
+    for sizing in "${sizings[@]}"; do
       for rounds in off on; do
         opt=(); [ $rounds = off ] && opt=(--no-size-rounds)
         # shellcheck disable=SC2086

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 
@@ -227,6 +228,45 @@ BOOST_AUTO_TEST_CASE(graded_edge_rule_asks_what_every_query_would) {
     BOOST_TEST(fresh.lower[v] <= h(b.points[v]), "vertex " << v << ": bound " << fresh.lower[v] << " above h " << h(b.points[v]));
   BOOST_TEST_MESSAGE("queries: every midpoint " << q_every << ", fresh bounds " << q_fresh << ", loose bounds " << q_loose);
   BOOST_TEST(q_fresh < q_every);
+}
+
+// 2D size alone (the size rounds' plan: bound +infinity): an edge longer than 1.5 h at its
+// midpoint makes its triangle too large, h the smaller of size2 and the segment's own maximum
+// (options::segment_maximum2), as sizing::edge_fit measures it. The device's boundary alone
+// (edges up to 4 long) against h = 10: nothing; with the substrate's own maximum 0.3: only the
+// substrate's triangles, each with an edge above 0.45.
+BOOST_AUTO_TEST_CASE(size_alone_2d_edge_rule_and_segment_maximum) {
+  const auto p = device2d();
+  const auto b = conformer::conform(p, {}, {});
+  const auto l = conformer::label(b, p, 1);
+  const auto cells = pl::mesh_segments<2>::wrap(b, l, 2);
+  const std::function<double(const point2&)> h = [](const point2&) { return 10.0; };
+  const std::function<double(int)> own = [](int number) { return number == 1 ? 0.3 : std::numeric_limits<double>::infinity(); };
+  auto long_edged = [&](std::size_t r) {  // region r's triangles with an edge above 1.5 x 0.3
+    std::size_t n = 0;
+    for (const auto& c : cells[r]) {
+      bool any = false;
+      for (std::size_t i = 0; i < 3; ++i) any = any || distance(b.points[c[i]], b.points[c[(i + 1) % 3]]) > 0.45;
+      n += any;
+    }
+    return n;
+  };
+  std::size_t substrate = l.regions.size();
+  for (std::size_t r = 0; r < l.regions.size(); ++r)
+    if (l.regions[r].number == 1) substrate = r;
+  BOOST_TEST_REQUIRE(substrate < l.regions.size());
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto without = refinement::plan_round<2>(cells, b, refinement::ratio_bound(2, inf), 2, h, 0, &l, nullptr, 0, nullptr, nullptr,
+                                                 nullptr, nullptr, nullptr);
+  BOOST_TEST(without.bad == 0u);
+  BOOST_TEST(without.large == 0u);
+  BOOST_TEST((without.add.empty() && without.split.empty()));
+  const auto with = refinement::plan_round<2>(cells, b, refinement::ratio_bound(2, inf), 2, h, 0, &l, nullptr, 0, nullptr, nullptr,
+                                              nullptr, nullptr, &own);
+  BOOST_TEST(with.bad == 0u);
+  BOOST_TEST(long_edged(substrate) > 0u);
+  BOOST_TEST(with.large == long_edged(substrate), with.large << " too large, " << long_edged(substrate) << " substrate triangles with a long edge");
+  BOOST_TEST(!(with.add.empty() && with.split.empty()));
 }
 
 // 2D smallest angles 20.7 (Ruppert's bound), 28 and 33 degrees; the interior points come from the

@@ -450,13 +450,13 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     r.uniform_size = field.uniform();
     r.min_size = field.minimum();
     r.size_sources = field.sources();
-    size_alone = D == 3 && !o.quality && o.size_rounds && (!field.uniform() || o.size > 0);
+    size_alone = !o.quality && o.size_rounds && (!field.uniform() || o.size > 0);
     if (field.uniform()) {
       volume = lattice_points(m, o.size, cloud, r.dropped_points, o.threads, o.size > 0 && !refined_interior);
     } else {
       volume = refined_interior ? lattice_points(m, 0, cloud, r.dropped_points, o.threads, false)
                                 : field_points(m, field, cloud, r.dropped_points, o.threads,
-                                               o.quality || size_alone ? &volume_lower : nullptr);
+                                               D == 3 && (o.quality || size_alone) ? &volume_lower : nullptr);
       if constexpr (D == 2)
         co.local_size2 = [&field](const point2& x, double cap) { return field.capped(x, cap); };
       else
@@ -466,7 +466,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   } else {
     volume = size_points<D>{}(p, o.size, cloud, r.dropped_points, co, !creating && !refined_interior);
     r.min_size = o.size;
-    size_alone = D == 3 && !o.quality && o.size_rounds && !creating && o.size > 0;
+    size_alone = !o.quality && o.size_rounds && !creating && o.size > 0;
   }
   const bool refining = o.quality || size_alone;
   r.volume_points = volume.size();
@@ -541,10 +541,12 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
         }
       };
     }
-    if (refined_interior) {
+    if (refined_interior || size_alone) {
       if constexpr (D == 2) {
-        if (!field.uniform())
+        if (!field.uniform()) {
           ro.size2 = [&field](const point2& x) { return field(x); };
+          ro.segment_maximum2 = [&field](int number) { return field.segment_maximum(number); };
+        }
         else if (o.size > 0)
           ro.size2 = [h = o.size](const point2&) { return h; };
       }

@@ -32,6 +32,7 @@
 namespace gsse::refinement {
 
 double ratio_bound(std::size_t dimension, double bound) {
+  if (std::isinf(bound) && bound > 0) return bound;  // size alone (the size rounds): no shape bound
   if (dimension == 2) {
     const double angle = bound > 0 ? bound : default_angle2;
     if (!(angle > 0 && angle <= max_angle2))
@@ -441,7 +442,8 @@ template <std::size_t D>
 plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary<D>& b, double bound, unsigned threads,
                    const std::function<double(const point<D>&)>& size, double sliver, const conformer::labelling* l,
                    std::vector<std::vector<char>>* todo, double acute_guard, balls_by_region<D>* balls,
-                   const spacing_floor<D>* floor, const edge_sizes* graded, vertex_sizes* vertex_h) {
+                   const spacing_floor<D>* floor, const edge_sizes* graded, vertex_sizes* vertex_h,
+                   const std::function<double(int)>* segment_maximum2) {
   plan<D> out;
   const auto& bp = b.points;
   // the cells in chunks, segment by segment: candidates are found in parallel and merged in
@@ -450,7 +452,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
     std::span<const cell_t<D>> cells;
     char* todo;            // per cell: 0 = known good, skipped; set to 0 when found good
     cell_ball<D>* balls;   // per cell: its ball, stored when measured (optional)
-    double most = std::numeric_limits<double>::infinity();  // its segment's own maximum size (graded)
+    double most = std::numeric_limits<double>::infinity();  // its segment's own maximum size (graded; 2D size2)
   };
   constexpr std::size_t piece = 4096;
   std::vector<chunk> chunks;
@@ -460,6 +462,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
     cell_ball<D>* kept = balls && (*balls)[r].size() == cells.size() ? (*balls)[r].data() : nullptr;
     double most = std::numeric_limits<double>::infinity();
     if (graded && graded->segment_maximum && l && r < l->regions.size()) most = graded->segment_maximum(l->regions[r].number);
+    if (D == 2 && segment_maximum2 && *segment_maximum2 && l && r < l->regions.size()) most = (*segment_maximum2)(l->regions[r].number);
     for (std::size_t a = 0; a < cells.size(); a += piece)
       chunks.push_back({cells.subspan(a, std::min(piece, cells.size() - a)), flags ? flags + a : nullptr, kept ? kept + a : nullptr, most});
   }
@@ -725,7 +728,20 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
           if (ask_edges) return too_long();
         }
         if (!size) return false;
-        const double h = size(at);
+        if constexpr (D == 2) {
+          // size alone (2D size rounds): each edge against 1.5 h at its midpoint, the issue's
+          // measure, as 3D; the circumradius rule would refine the lattice's own equilateral
+          // triangles (circumradius exactly h / sqrt 3) on rounding
+          if (size_alone) {
+            for (std::size_t i = 0; i <= D; ++i)
+              for (std::size_t j = i + 1; j <= D; ++j) {
+                const double e = distance(p[c[i]], p[c[j]]);
+                if (e > 1.5 * std::min(chunks[k].most, size(0.5 * (p[c[i]] + p[c[j]])))) return true;
+              }
+            return false;
+          }
+        }
+        const double h = D == 2 ? std::min(chunks[k].most, size(at)) : size(at);
         if constexpr (D == 2)
           return 3 * r * r > h * h;
         else
@@ -1840,7 +1856,7 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     };
     auto pl = plan_round(cells, b, bound, o.threads, size, D == 3 ? o.sliver_angle : 0.0, &l, &todo, o.acute_guard,
                          keep_balls ? &balls : nullptr, &floor,
-                         D == 3 ? o.graded3.get() : nullptr, &vertex_h);
+                         D == 3 ? o.graded3.get() : nullptr, &vertex_h, &o.segment_maximum2);
     st.plan_seconds += lap();
     st.outside += pl.outside;
     st.bad_left = pl.bad;
@@ -1912,11 +1928,11 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
 template plan<2> plan_round<2>(const cells_by_region<2>&, const conformer::boundary<2>&, double, unsigned,
                                const std::function<double(const point2&)>&, double, const conformer::labelling*,
                                std::vector<std::vector<char>>*, double, balls_by_region<2>*, const spacing_floor<2>*,
-                               const edge_sizes*, vertex_sizes*);
+                               const edge_sizes*, vertex_sizes*, const std::function<double(int)>*);
 template plan<3> plan_round<3>(const cells_by_region<3>&, const conformer::boundary<3>&, double, unsigned,
                                const std::function<double(const point3&)>&, double, const conformer::labelling*,
                                std::vector<std::vector<char>>*, double, balls_by_region<3>*, const spacing_floor<3>*,
-                               const edge_sizes*, vertex_sizes*);
+                               const edge_sizes*, vertex_sizes*, const std::function<double(int)>*);
 template std::vector<cavity_piece<2>> cavity_pieces<2>(const std::vector<point<2>>&, const std::vector<std::array<vertex_id, 2>>&);
 template std::vector<cavity_piece<3>> cavity_pieces<3>(const std::vector<point<3>>&, const std::vector<std::array<vertex_id, 3>>&);
 template bool remesh_cavities<2>(const conformer::boundary<2>&, const conformer::boundary<2>&, const conformer::labelling&,

@@ -45,11 +45,12 @@ struct options {
   double sliver_angle = refinement::options{}.sliver_angle;  // 3D, with quality: see refinement::options
   double acute_guard = refinement::options{}.acute_guard;  // 3D, with quality: see refinement::options
   std::size_t quality_rounds = 0;  // with quality: the round cap (0: refinement::options default)
-  // 3D, a size (`size` or a graded field) without `quality`: rounds of the refinement for size
+  // a size (`size` or a graded field) without `quality`: rounds of the refinement for size
   // alone (no shape bound, no sliver rule) until no edge is longer than 1.5 h at its midpoint
   // (report::size_rounds; the placement alone left up to 25 edges of about 1.3e5 above it on the
-  // benchmark structures, up to 1.65 h; docs/benchmarks.md, forty-fifth part). false: the mesh
-  // as the placement makes it
+  // 3D benchmark structures, up to 1.65 h, and with --grade up to 198 of about 7.9e4 on the 2D
+  // ones; docs/benchmarks.md, forty-fifth and forty-sixth parts). false: the mesh as the
+  // placement makes it
   bool size_rounds = true;
   unsigned threads = 1;  // threads shared by the stages (0: every hardware thread, execution::thread_count)
   bool verify = false;   // run the library verifier (gsse::verify::check against the input PLC) at the end

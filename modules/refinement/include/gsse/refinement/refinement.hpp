@@ -71,9 +71,14 @@ struct options {
   // a size field: an element too large for h(circumcentre) is refined too, whatever its shape: 2D
   // a circumradius above h / sqrt 3 (the equilateral triangle of side h), 3D an edge longer than
   // 1.5 h (the bound; the BCC lattice's own tetrahedra, edges h and 1.15 h, stay).
+  // Size alone (bound = +infinity, the size rounds): 2D too measures each edge against 1.5 h at
+  // its midpoint (the lattice's equilateral triangles sit exactly on the circumradius rule).
   // Empty: shape only
   std::function<double(const point2&)> size2;
   std::function<double(const point3&)> size3;
+  // 2D, with size2: each segment's own maximum size, by its number (h in a segment is the smaller
+  // of size2 and it, as sizing::size_field(x, number) and sizing::edge_fit have it). May be empty
+  std::function<double(int)> segment_maximum2;
   // 3D, a graded size field (size3 empty): an element with an edge longer than 1.5 h at the
   // edge's midpoint is refined by its circumcentre, as a bad one (edge_sizes)
   std::shared_ptr<const edge_sizes> graded3;
@@ -186,7 +191,7 @@ plan<D> plan_round(const cells_by_region<D>& cells, const conformer::boundary<D>
                    const conformer::labelling* labels = nullptr, std::vector<std::vector<char>>* todo = nullptr,
                    double acute_guard = 0, balls_by_region<D>* balls = nullptr,
                    const spacing_floor<D>* floor = nullptr, const edge_sizes* graded = nullptr,
-                   vertex_sizes* vertex_h = nullptr);
+                   vertex_sizes* vertex_h = nullptr, const std::function<double(int)>* segment_maximum2 = nullptr);
 
 /// How the refinement meshes (the pipeline's mesh_segments::wrap and ::assemble): every region of
 /// a labelled boundary from scratch (the first mesh, and the fallback when a round's cavities do
