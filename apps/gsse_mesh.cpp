@@ -18,6 +18,7 @@
 #include <variant>
 #include <vector>
 
+#include "allocator_tuning.hpp"
 #include "gsse/io/node_ele.hpp"
 #include "gsse/io/gmsh.hpp"
 #include "gsse/io/poly.hpp"
@@ -93,7 +94,10 @@ void usage(std::FILE* to) {
       "           exit: status 0 if it passes, 3 if not (the problems on stderr)\n"
       "  --plc-out write the input as read (with the region points placed in Gmsh volumes) as a\n"
       "           TetGen/Triangle .poly and exit without meshing (with no option but --threads,\n"
-      "           --no-merge and --quiet)\n",
+      "           --no-merge and --quiet)\n"
+      "  environment: GSSE_MALLOC=system keeps glibc's malloc as it is (by default the run sets\n"
+      "           GLIBC_TUNABLES for huge pages and starts again; not if GLIBC_TUNABLES or LD_PRELOAD\n"
+      "           is set)\n",
       to);
 }
 
@@ -379,7 +383,18 @@ int run(const gsse::plc<D>& p, const args& a) {
       js << (k ? ", " : "") << "{\"name\": \"" << d.segments()[k].name() << "\", \"number\": " << d.segments()[k].number()
          << ", \"cells\": " << d.segments()[k].num_cells() << "}";
     js << "], \"steiner\": " << r.steiner << ", \"volume_points\": " << r.volume_points
-       << ", \"created_points\": " << r.creation.created << ", \"times\": {";
+       << ", \"created_points\": " << r.creation.created << ", \"malloc\": ";
+    // the allocator's settings the run had (apps/allocator_tuning.hpp): GLIBC_TUNABLES, or null
+    if (const char* t = std::getenv("GLIBC_TUNABLES")) {
+      js << '"';
+      for (const char* c = t; *c; ++c)
+        if (*c == '"' || *c == '\\') js << '\\' << *c;
+        else if (static_cast<unsigned char>(*c) >= 0x20) js << *c;
+      js << '"';
+    } else {
+      js << "null";
+    }
+    js << ", \"times\": {";
     for (std::size_t k = 0; k < r.times.size(); ++k)
       js << (k ? ", " : "") << "\"" << r.times[k].stage << "\": " << r.times[k].seconds;
     js << "}, \"quality\": {\"elements\": " << q.elements << ", \"radius_edge\": {\"min\": " << q.min_ratio
@@ -438,6 +453,7 @@ int run(const gsse::plc<D>& p, const args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  gsse::apps::tune_allocator(argv);
   args a;
   try {
     // every option but these meshes, writes a mesh or checks one: --plc-out, which meshes nothing,

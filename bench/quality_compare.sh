@@ -9,6 +9,9 @@
 # is checked by ../shared's meshcheck: its Delaunay verdict (deepest vertex inside a circumsphere,
 # as a fraction of the squared radius), radius-edge maximum and count above 1.414, dihedral minimum
 # and count below 5 degrees. Prints one Markdown row per configuration. Installs tetgen if missing.
+# gsse-mesh runs glibc's malloc with huge pages (apps/allocator_tuning.hpp); TetGen -O0 is timed
+# twice, as installed and with the same GLIBC_TUNABLES (the row marked "tuned"), so that the
+# allocator's share of the difference shows.
 # SIZE_PICK=1 or 2: only the first (about 1e5) or second (about 6e5) size of each structure.
 # ROTATE=1: the structures turned by structures.py --rotate (no facet parallel to an axis), checked
 # with --inexact-ok by the fixed copy of meshcheck (tests/support/meshcheck_fixed.py; the shipped
@@ -30,6 +33,8 @@ else
   MC=$(bash "$shared/tools/meshcheck/build.sh" | tail -1)
 fi
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+# the settings gsse-mesh gives itself, read from its source
+tunables=$(grep -o '"glibc[^"]*"' "$(cd "$(dirname "$0")/.." && pwd)/apps/allocator_tuning.hpp" | tr -d '"' | tr -d '\n')
 declare -A SIZES=([mosfet]="0.0304 0.0161" [diffusion]="0.0451 0.0248" [trench]="0.0442 0.0243" [finfet]="0.0276 0.0152")
 # SIZE_PICK=1: only the first size (about 1e5 tetrahedra), 2: only the second (about 6e5)
 if [ -n "${SIZE_PICK:-}" ]; then
@@ -83,17 +88,18 @@ for s in ${structures[@]}; do
     echo "| $name | $h | gsse --quality $bound | 1 | $nv | $ne | $s1 | $m1 | $q | |"
     echo "| $name | $h | gsse --quality $bound | 2 | $nv | $ne | $s2 | $m2 | $q | $(awk -v a="$s1" -v b="$s2" 'BEGIN{printf "%.2f", a/b}') |"
     cp "$work/$s.poly" "$work/t.poly"
-    for opt in "-O0" ""; do
+    for opt in "-O0" "-O0 tuned" ""; do
+      env=(); [ "$opt" = "-O0 tuned" ] && env=(env "GLIBC_TUNABLES=$tunables")
       # the volume bound that gives GSSE's vertex count (vertices ~ 1/a), three untimed steps
       # (TetGen 1.5.0 can abort: the rotated FinFET at a = 4.139e-07 fails an assertion in
       # insphere_s; the row then says so and the next configuration runs)
       vol=$(/usr/bin/python3 -c "print(f'{$h**3/(6*2**0.5):.4g}')")
       aborted=""
       for _ in 1 2 3; do
-        tetgen -pq${bound}Aa"$vol" $opt -Q "$work/t.poly" > "$work/tg.log" 2>&1 || { aborted=$vol; break; }
+        tetgen -pq${bound}Aa"$vol" ${opt% tuned} -Q "$work/t.poly" > "$work/tg.log" 2>&1 || { aborted=$vol; break; }
         vol=$(/usr/bin/python3 -c "print(f'{$vol * $(first "$work/t.1.node") / $nv:.4g}')")
       done
-      [ -z "$aborted" ] && { best tg tetgen -pq${bound}Aa"$vol" $opt -Q "$work/t.poly" 2> "$work/tg.log" || aborted=$vol; }
+      [ -z "$aborted" ] && { best tg "${env[@]}" tetgen -pq${bound}Aa"$vol" ${opt% tuned} -Q "$work/t.poly" 2> "$work/tg.log" || aborted=$vol; }
       if [ -n "$aborted" ]; then
         echo "| $name | $h | tetgen -pq${bound}Aa$aborted $opt | 1 | aborted: $(grep -v '^$' "$work/tg.log" | tail -1 | cut -c1-120) | | | | | | | | | | |"
         continue

@@ -26,6 +26,10 @@
 #               write one file twice (--stats g.json with -o g.node), exits 1 before meshing with
 #               a message naming both, and the sidecar is byte-identical afterwards; a --stats
 #               file put where a sidecar is read is named as such.
+#  allocator    the run sets glibc's malloc tunables for itself (--stats' "malloc" equals the
+#               string in apps/allocator_tuning.hpp), GSSE_MALLOC=system leaves them out (null),
+#               a GLIBC_TUNABLES of the user's own is kept as given; the mesh is byte-identical
+#               either way (nothing may depend on where memory lies), with 1 and 2 threads.
 # usage: cli_behaviour.sh GSSE_MESH SOURCE_DIR
 set -uo pipefail
 mesh=$1; src=$2
@@ -322,4 +326,17 @@ print("none" if "refinement" not in json.load(open(sys.argv[1]))["quality"] else
 [[ "$out" != *"size rounds"* ]] && [ "$got" = none ] && ok "--no-size-rounds: no rounds" || bad "--no-size-rounds: '$got', '$out'"
 err=$("$mesh" "$work/box.poly" --check "$work/fit.node" --size-fit 2>&1 >/dev/null); rc=$?
 [ $rc = 2 ] && [[ "$err" == *"--size-fit"* ]] && ok "--check with --size-fit: exit 2" || bad "--check with --size-fit: exit $rc, '$err'"
+# the allocator's settings: set by the run itself, left out on request, the user's own kept; the
+# mesh the same under each
+want=$(grep -o '"glibc[^"]*"' "$src/apps/allocator_tuning.hpp" | tr -d '"' | tr -d '\n')
+malloc_of() { $py -c 'import json, sys; print(json.load(open(sys.argv[1]))["malloc"])' "$1"; }
+env -u GLIBC_TUNABLES -u LD_PRELOAD -u GSSE_MALLOC "$mesh" "$work/box.poly" --size 0.1 --quality 1.414 --threads 2 --quiet -o "$work/al1.node" --stats "$work/al1.stats.json"
+GSSE_MALLOC=system env -u GLIBC_TUNABLES -u LD_PRELOAD "$mesh" "$work/box.poly" --size 0.1 --quality 1.414 --threads 1 --quiet -o "$work/al2.node" --stats "$work/al2.stats.json"
+GLIBC_TUNABLES=glibc.malloc.top_pad=0 env -u LD_PRELOAD -u GSSE_MALLOC "$mesh" "$work/box.poly" --size 0.1 --quality 1.414 --threads 2 --quiet -o "$work/al3.node" --stats "$work/al3.stats.json"
+got="$(malloc_of "$work/al1.stats.json") | $(malloc_of "$work/al2.stats.json") | $(malloc_of "$work/al3.stats.json")"
+if [ -n "$want" ] && [ "$got" = "$want | None | glibc.malloc.top_pad=0" ]; then ok "allocator: tuned, left alone on request, the user's own kept ($want)"
+else bad "allocator: --stats malloc '$got', want '$want | None | glibc.malloc.top_pad=0'"; fi
+same=yes
+for k in 2 3; do for e in node ele face; do cmp -s "$work/al1.$e" "$work/al$k.$e" || same="no ($k.$e)"; done; done
+[ "$same" = yes ] && [ "$(count "$work/al1.node")" -gt 100 ] && ok "allocator: the mesh is byte-identical under each" || bad "allocator: meshes differ: $same"
 exit $fail
