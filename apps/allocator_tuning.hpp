@@ -11,8 +11,9 @@
 // so main() sets GLIBC_TUNABLES and executes the same binary again, once, before anything else
 // (no file read, no thread started). Left alone: a process whose GLIBC_TUNABLES is already set
 // (the user's own settings, or the second start), one with LD_PRELOAD (an instrumented run:
-// valgrind, heaptrack), and GSSE_MALLOC=system. If the executable cannot
-// be run again (no /proc), the run goes on with the defaults.
+// valgrind, heaptrack), GSSE_MALLOC=system, and a sanitizer build (GCC's __SANITIZE_ADDRESS__ or
+// __SANITIZE_THREAD__: the sanitizer's allocator is its own). If the executable cannot be run
+// again (no /proc), the run goes on with the defaults.
 #pragma once
 
 #include <unistd.h>
@@ -31,7 +32,9 @@ inline constexpr const char* malloc_tunables =
 
 /// Call first in main(): returns only if the process keeps its allocator as it is.
 inline void tune_allocator(char** argv) {
-#if defined(__linux__) && defined(__GLIBC__)
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  (void)argv;  // the sanitizer's allocator: glibc's tunables do not apply, a second start only costs
+#elif defined(__linux__) && defined(__GLIBC__)
   if (std::getenv("GLIBC_TUNABLES") || std::getenv("LD_PRELOAD")) return;
   if (const char* m = std::getenv("GSSE_MALLOC"); m && std::strcmp(m, "system") == 0) return;
   if (::setenv("GLIBC_TUNABLES", malloc_tunables, 1) != 0) return;
