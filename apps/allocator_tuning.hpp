@@ -4,8 +4,8 @@
 //
 // Why: the mesher allocates and frees whole-mesh arrays every refinement round; with glibc's
 // defaults each large one is mapped afresh and faulted in 4 KiB at a time, and page faults are
-// dear on virtual machines. Measured (docs/benchmarks.md, forty-seventh part): 13,000 of them on
-// the 1e5 trench, 45,000 on the 6e5 MOSFET, and about a third of the 6e5 run's wall time.
+// dear on virtual machines. Measured (docs/benchmarks.md, forty-seventh part): 13,600 of them on
+// the 1e5 trench, 37,900 on the 6e5 MOSFET, whose wall time fell by nearly half without them.
 //
 // How: glibc reads these settings (tunables) only from the environment when a process starts,
 // so main() sets GLIBC_TUNABLES and executes the same binary again, once, before anything else

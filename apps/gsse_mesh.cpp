@@ -385,16 +385,8 @@ int run(const gsse::plc<D>& p, const args& a) {
     js << "], \"steiner\": " << r.steiner << ", \"volume_points\": " << r.volume_points
        << ", \"created_points\": " << r.creation.created << ", \"malloc\": ";
     // the allocator's settings the run had (apps/allocator_tuning.hpp): GLIBC_TUNABLES, or null
-    if (const char* t = std::getenv("GLIBC_TUNABLES")) {
-      js << '"';
-      for (const char* c = t; *c; ++c)
-        if (*c == '"' || *c == '\\') js << '\\' << *c;
-        else if (static_cast<unsigned char>(*c) >= 0x20) js << *c;
-      js << '"';
-    } else {
-      js << "null";
-    }
-    js << ", \"times\": {";
+    const char* tunables = std::getenv("GLIBC_TUNABLES");
+    js << (tunables ? gsse::io::json_string(tunables) : "null") << ", \"times\": {";
     for (std::size_t k = 0; k < r.times.size(); ++k)
       js << (k ? ", " : "") << "\"" << r.times[k].stage << "\": " << r.times[k].seconds;
     js << "}, \"quality\": {\"elements\": " << q.elements << ", \"radius_edge\": {\"min\": " << q.min_ratio

@@ -166,17 +166,6 @@ struct json_scan {
   }
 };
 
-std::string quoted(const std::string& n) {
-  std::string r = "\"";
-  for (char c : n) {
-    if (c == '"' || c == '\\') r += '\\';
-    if (c == '\n') { r += "\\n"; continue; }
-    if (c == '\t') { r += "\\t"; continue; }
-    r += c;
-  }
-  return r + "\"";
-}
-
 /// An entry's own "grade" (above 1), or 0 when it has none.
 double own_grade(const json_scan& j, const json_scan::value& entry, const std::string& whose) {
   const json_scan::value* g = entry.get("grade");
@@ -247,6 +236,17 @@ void read_sizing(const json_scan& j, sizing_table& t) {
 }
 
 }  // namespace
+
+std::string json_string(const std::string& n) {
+  std::string r = "\"";
+  for (char c : n) {
+    if (c == '"' || c == '\\') r += '\\';
+    if (c == '\n') { r += "\\n"; continue; }
+    if (c == '\t') { r += "\\t"; continue; }
+    r += c;
+  }
+  return r + "\"";
+}
 
 std::string base_of(const std::string& path) {
   std::filesystem::path p(path);
@@ -327,7 +327,7 @@ segment_table read_sidecar(const std::string& json_path) {
 void write_sidecar(const std::string& json_path, const segment_table& t) {
   write_atomically(json_path, [&](std::ostream& o) {
     o << "{\n \"segments\": [";
-    for (std::size_t k = 0; k < t.names.size(); ++k) o << (k ? ", " : "") << quoted(t.names[k]);
+    for (std::size_t k = 0; k < t.names.size(); ++k) o << (k ? ", " : "") << json_string(t.names[k]);
     o << "],\n \"numbers\": [";
     for (std::size_t k = 0; k < t.numbers.size(); ++k) o << (k ? ", " : "") << t.numbers[k];
     o << "]";
@@ -336,7 +336,7 @@ void write_sidecar(const std::string& json_path, const segment_table& t) {
       o << ",\n \"facets\": {";
       bool first = true;
       for (const auto& [m, n] : t.facet_names) {
-        o << (first ? "" : ", ") << quoted(std::to_string(m)) << ": " << quoted(n);
+        o << (first ? "" : ", ") << json_string(std::to_string(m)) << ": " << json_string(n);
         first = false;
       }
       o << "}";

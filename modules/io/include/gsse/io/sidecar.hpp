@@ -60,6 +60,8 @@ struct segment_table {
 /// Reads the sidecar; a missing file gives an empty table, a malformed or unreadable one an
 /// io_error naming the file and line.
 segment_table read_sidecar(const std::string& json_path);
+/// `n` as a JSON string: quoted, with '"' and '\\' escaped, newline and tab as \n and \t.
+std::string json_string(const std::string& n);
 /// Writes the sidecar atomically.
 void write_sidecar(const std::string& json_path, const segment_table& t);
 /// BASE of BASE.ext (directory kept).
