@@ -247,7 +247,8 @@ BOOST_AUTO_TEST_CASE(planar_perturbation_matches_2d) {
 // asked (its own double filter, then 64-bit-limb integers where the coordinate differences allow).
 // Every sign it gives must be CGAL's: checked on lattices of several spacings and offsets (exact
 // ties by the ten thousand), the same with one coordinate moved by an ulp (ties just broken),
-// points straddling zero (differences that are not doubles: CGAL's path), and generic points.
+// a cube's corners with a zero moved next to it (a near tie no integer width holds: CGAL's
+// path), and generic points.
 BOOST_AUTO_TEST_CASE(fixed_predicates_agree_with_cgal) {
   namespace fx = gsse::geometry::fixed;
   const kernel k;
@@ -263,7 +264,12 @@ BOOST_AUTO_TEST_CASE(fixed_predicates_agree_with_cgal) {
     for (auto& p : q)
       for (auto& x : p) x = mode == 4 ? 1 + unit(g) : o + cell(g) * h;
     if (mode == 2) q[4][it % 3] = std::nextafter(q[4][it % 3], 1e9);
-    if (mode == 3) q[4][it % 3] = 1e-12 * (1 + unit(g));
+    if (mode == 3) {  // a cube's corners, one at the origin, one zero moved next to it: a near
+                      // tie no integer width holds (CGAL's path)
+      for (std::size_t i = 0; i < 5; ++i)
+        for (std::size_t a = 0; a < 3; ++a) q[i][a] = ((i + 1) >> a) & 1 ? h : 0.0;
+      q[4][it % 3] = q[4][it % 3] == 0 ? 1e-20 * (1 + unit(g)) : h * (1 + 1e-20);
+    }
     const int ori = static_cast<int>(k.orientation_3_object()(cg(q[0]), cg(q[1]), cg(q[2]), cg(q[3])));
     if (const int s = fx::orient3d(q[0], q[1], q[2], q[3]); s != fx::undecided) {
       ++decided[0], ties[0] += ori == 0, wrong += s != ori;
@@ -340,8 +346,58 @@ BOOST_AUTO_TEST_CASE(fixed_predicates_agree_with_cgal) {
   }
   BOOST_TEST(wide_wrong == 0);
   BOOST_TEST(wide_integer > 10000);  // non-zero answers, not only ties
+  // Near ties whose differences are not doubles: a cube's corners (side h) with its low corner
+  // at a generic place between h/16 and h from the origin on each axis (either side of it): the
+  // coordinates differ in magnitude by more than a factor 2, so their differences are rarely
+  // exact doubles and the direct integer path cannot take them, and the rounding of the far
+  // corners leaves the five cospherical up to an ulp, which no filter decides. integer_rows'
+  // second path (the points moved, then read as integers) must, with CGAL's signs: the
+  // in-sphere of five corners, the orientation of a face's four, and the equatorial ball of
+  // three of a face's corners against the fourth.
+  int moved_wrong = 0, moved_decided = 0, moved_filtered = 0;
+  std::uniform_int_distribution<int> side_sign(0, 1);
+  for (int it = 0; it < 20000; ++it) {
+    const double h = spacing(g);
+    point3 base;
+    for (auto& x : base) x = (side_sign(g) ? 1.0 : -1.0) * h * (1.0 / 16 + unit(g) * 15 / 16);
+    auto corner = [&](unsigned bits) {
+      point3 p = base;
+      for (std::size_t a = 0; a < 3; ++a)
+        if ((bits >> a) & 1) p[a] = base[a] + h;
+      return p;
+    };
+    const std::array<point3, 5> q = {corner(1), corner(2), corner(3), corner(4), corner(5)};
+    const auto cq = [&](int i) { return cg(q[static_cast<std::size_t>(i)]); };
+    const int cs = static_cast<int>(k.side_of_oriented_sphere_3_object()(cq(0), cq(1), cq(2), cq(3), cq(4)));
+    const int fs = fx::in_sphere(q[0], q[1], q[2], q[3], q[4]);
+    moved_decided += fs != fx::undecided;
+    moved_wrong += (fs != fx::undecided && fs != cs) + (in_sphere(q[0], q[1], q[2], q[3], q[4]) != cs);
+    const std::array<point3, 4> f = {corner(0), corner(1), corner(2), corner(3)};
+    const auto cf = [&](int i) { return cg(f[static_cast<std::size_t>(i)]); };
+    const int co = static_cast<int>(k.orientation_3_object()(cf(0), cf(1), cf(2), cf(3)));
+    const int fo = fx::orient3d(f[0], f[1], f[2], f[3]);
+    moved_decided += fo != fx::undecided;
+    moved_wrong += fo != fx::undecided && fo != co;
+    const int ce = static_cast<int>(k.side_of_bounded_sphere_3_object()(cf(0), cf(1), cf(2), cf(3)));
+    const int fe = fx::in_equatorial(f[0], f[1], f[2], f[3]);
+    moved_decided += fe != fx::undecided;
+    moved_wrong += fe != fx::undecided && fe != ce;
+    // what the direct path alone would have decided: the differences all exact doubles
+    bool exact = true;
+    for (std::size_t i = 0; i < 4; ++i)
+      for (std::size_t a = 0; a < 3; ++a) {
+        const double x = q[i][a] - q[4][a];
+        exact = exact && x + q[4][a] == q[i][a] && q[i][a] - x == q[4][a];
+      }
+    moved_filtered += exact;
+  }
+  BOOST_TEST(moved_wrong == 0);
+  BOOST_TEST(moved_decided > 59000);    // all but a few, whose corners reach below 2^-59 of the side
+  BOOST_TEST(moved_filtered < 10000);   // and half of the in-sphere calls at least needed the move
   BOOST_TEST_MESSAGE("fixed predicates decided " << decided[0] << ", " << decided[1] << ", " << decided[2]
                                                  << "; exact zeros " << ties[0] << ", " << ties[1] << ", " << ties[2]
                                                  << "; in-sphere tests left to CGAL " << to_cgal
-                                                 << "; wide near-ties answered " << wide_integer);
+                                                 << "; wide near-ties answered " << wide_integer
+                                                 << "; near ties at generic coordinates decided " << moved_decided
+                                                 << " of 60000 (in-sphere differences all doubles " << moved_filtered << " of 20000)");
 }

@@ -8,6 +8,10 @@
 // (multi-precision Mpzf) cost about 0.8 microseconds a call, 17% of meshing the bench trench.
 // Here the differences are read as 61-bit integers (times 2^e, which does not change a sign)
 // and the determinant is evaluated in fixed-width integers of 64-bit limbs: exact, no allocation.
+// Where the differences are not doubles (points made by front rules or as circumcentres, whose
+// coordinates differ in magnitude by more than a factor 2), the points are first moved together
+// by an exact translation and their coordinates read as integers (integer_rows): near ties there
+// went to Mpzf, about half of a `--fill rules` run, until 2026-12-03.
 //
 // The double filters assume round-to-nearest, as CGAL's static filters do.
 // Every function returns the exact sign, as CGAL's predicates do, or `undecided` (2) when the
@@ -99,44 +103,97 @@ inline limbs<2> mag128(i128 v, bool& negative) {
   return {static_cast<u64>(m), static_cast<u64>(m >> 64)};
 }
 
-/// The differences a - o for each a in `pts` as integers times 2^e (one e for all): false if one is
-/// not exactly a double, or they do not all fit in 62 bits at the scale of the smallest set bit
-/// among them (or one is subnormal, infinite or NaN).
-template <std::size_t N>
-bool integer_rows(const std::array<const point3*, N>& pts, const point3& o, std::array<std::array<std::int64_t, 3>, N>& rows) {
-  std::array<std::array<u64, 3>, N> mant{};  // |a - o| = mant * 2^ex (mant 0 for 0)
-  std::array<std::array<int, 3>, N> ex{};
-  std::array<std::array<bool, 3>, N> negative{};
+/// x (exactly a double) as mant * 2^ex with mant odd (mant 0 for 0): false if x is subnormal,
+/// infinite or NaN.
+inline bool odd_parts(double x, u64& mant, int& ex, int& top) {
+  mant = 0, ex = 0, top = 0;
+  if (x == 0) return true;
+  const u64 bits = std::bit_cast<u64>(x);
+  const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+  if (biased == 0 || biased == 0x7ff) return false;
+  const u64 m = (bits & ((u64{1} << 52) - 1)) | (u64{1} << 52);
+  const int z = std::countr_zero(m);
+  mant = m >> z;
+  ex = biased - 1075 + z;  // the lowest set bit
+  top = ex + 52 - z;       // the highest
+  return true;
+}
+/// a - b, and whether that is exact (the error-free difference's tail is zero).
+inline bool exact_difference(double a, double b, double& x) {
+  x = a - b;
+  const double bv = a - x, av = x + bv;
+  return (a - av) + (bv - b) == 0;
+}
+/// Exact doubles v[j][k] (none subnormal) as integers times one 2^e, each below 2^(span + 1):
+/// false if they need more bits than that at the scale of the smallest set bit among them.
+template <std::size_t M>
+bool to_integers(const std::array<std::array<double, 3>, M>& v, int span, std::array<std::array<std::int64_t, 3>, M>& out) {
+  std::array<std::array<u64, 3>, M> mant{};
+  std::array<std::array<int, 3>, M> ex{};
   int lowest = 1 << 20, highest = -(1 << 20);
-  for (std::size_t i = 0; i < N; ++i)
+  for (std::size_t i = 0; i < M; ++i)
     for (std::size_t k = 0; k < 3; ++k) {
-      const double a = (*pts[i])[k], b = o[k];
-      const double x = a - b;
-      // exact iff the error-free difference's tail is zero
-      const double bv = a - x, av = x + bv;
-      if ((a - av) + (bv - b) != 0) return false;
-      if (x == 0) continue;
-      const u64 bits = std::bit_cast<u64>(x);
-      const int biased = static_cast<int>((bits >> 52) & 0x7ff);
-      if (biased == 0 || biased == 0x7ff) return false;  // subnormal, infinite or NaN
-      const u64 m = (bits & ((u64{1} << 52) - 1)) | (u64{1} << 52);
-      const int z = std::countr_zero(m);
-      mant[i][k] = m >> z;
-      ex[i][k] = biased - 1075 + z;
+      int top;
+      if (!odd_parts(v[i][k], mant[i][k], ex[i][k], top)) return false;
+      if (mant[i][k] == 0) continue;
       lowest = std::min(lowest, ex[i][k]);
-      highest = std::max(highest, ex[i][k] + 52 - z);
-      negative[i][k] = x < 0;
+      highest = std::max(highest, top);
     }
   if (highest < lowest) {  // all zero
-    rows = {};
+    out = {};
     return true;
   }
-  if (highest - lowest > 60) return false;
-  for (std::size_t i = 0; i < N; ++i)
+  if (highest - lowest > span) return false;
+  for (std::size_t i = 0; i < M; ++i)
     for (std::size_t k = 0; k < 3; ++k) {
-      const auto v = mant[i][k] == 0 ? 0 : static_cast<std::int64_t>(mant[i][k] << (ex[i][k] - lowest));
-      rows[i][k] = negative[i][k] ? -v : v;
+      const auto x = mant[i][k] == 0 ? 0 : static_cast<std::int64_t>(mant[i][k] << (ex[i][k] - lowest));
+      out[i][k] = v[i][k] < 0 ? -x : x;
     }
+  return true;
+}
+
+/// The differences a - o for each a in `pts` as integers times 2^e (one e for all), each below
+/// 2^61: false if they do not fit (or a coordinate is subnormal, infinite or NaN).
+/// First the differences themselves, where each is exactly a double and they fit in 61 bits at
+/// the scale of the smallest set bit among them (a lattice, a facet's subdivision points). Else
+/// the points and o moved together by t, per axis 0 or a multiple of the power of two s just
+/// above their spread (then every coordinate minus t is exact), each moved coordinate read as an
+/// integer below 2^60 at the scale of the smallest set bit among them, and the rows their
+/// differences, exactly: a translation changes none of the signs. That fits wherever the points
+/// lie close together and no coordinate of theirs is far below their spread without being 0
+/// (points made by a front rule, circumcentres, a rotated input's vertices, whose differences
+/// are rarely exact doubles: they went to CGAL's multi-precision fallback, about half of a
+/// `--fill rules` run).
+template <std::size_t N>
+bool integer_rows(const std::array<const point3*, N>& pts, const point3& o, std::array<std::array<std::int64_t, 3>, N>& rows) {
+  {
+    std::array<std::array<double, 3>, N> d;
+    bool exact = true;
+    for (std::size_t i = 0; i < N && exact; ++i)
+      for (std::size_t k = 0; k < 3 && exact; ++k) exact = exact_difference((*pts[i])[k], o[k], d[i][k]);
+    if (exact && to_integers<N>(d, 60, rows)) return true;
+  }
+  double spread = 0;
+  for (std::size_t i = 0; i < N; ++i)
+    for (std::size_t k = 0; k < 3; ++k) spread = std::max(spread, std::abs((*pts[i])[k] - o[k]));
+  if (!(spread > 0) || !(spread < 0x1p900)) return false;  // also NaN
+  int e;
+  std::frexp(spread, &e);
+  const double s = std::ldexp(1.0, e);  // a power of two above the spread
+  std::array<std::array<double, 3>, N + 1> v;  // the points, then o, moved by t
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (!std::isfinite(o[k])) return false;
+    // a coordinate below 2s stays where it is (moved by a multiple of s it could only grow and
+    // lose its last bits); else every one on this axis is at least s, their last bits at or
+    // above s 2^-52, and minus the multiple of s nearest o, at most 1.5 s: exact
+    const double t = std::abs(o[k]) < 2 * s ? 0.0 : std::nearbyint(o[k] / s) * s;  // exact: s is a power of two
+    for (std::size_t i = 0; i <= N; ++i)
+      if (!exact_difference(i < N ? (*pts[i])[k] : o[k], t, v[i][k])) return false;
+  }
+  std::array<std::array<std::int64_t, 3>, N + 1> w;
+  if (!to_integers<N + 1>(v, 59, w)) return false;
+  for (std::size_t i = 0; i < N; ++i)
+    for (std::size_t k = 0; k < 3; ++k) rows[i][k] = w[i][k] - w[N][k];
   return true;
 }
 
