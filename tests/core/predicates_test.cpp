@@ -264,11 +264,11 @@ BOOST_AUTO_TEST_CASE(fixed_predicates_agree_with_cgal) {
     for (auto& p : q)
       for (auto& x : p) x = mode == 4 ? 1 + unit(g) : o + cell(g) * h;
     if (mode == 2) q[4][it % 3] = std::nextafter(q[4][it % 3], 1e9);
-    if (mode == 3) {  // a cube's corners, one at the origin, one zero moved next to it: a near
-                      // tie no integer width holds (CGAL's path)
+    if (mode == 3) {  // a cube's corners, one at the origin, the query's zero coordinate moved
+                      // next to it: a near tie no integer width holds (CGAL's path)
       for (std::size_t i = 0; i < 5; ++i)
         for (std::size_t a = 0; a < 3; ++a) q[i][a] = ((i + 1) >> a) & 1 ? h : 0.0;
-      q[4][it % 3] = q[4][it % 3] == 0 ? 1e-20 * (1 + unit(g)) : h * (1 + 1e-20);
+      q[4][1] = 1e-20 * (1 + unit(g));  // the query (h, 0, h)
     }
     const int ori = static_cast<int>(k.orientation_3_object()(cg(q[0]), cg(q[1]), cg(q[2]), cg(q[3])));
     if (const int s = fx::orient3d(q[0], q[1], q[2], q[3]); s != fx::undecided) {
@@ -346,58 +346,62 @@ BOOST_AUTO_TEST_CASE(fixed_predicates_agree_with_cgal) {
   }
   BOOST_TEST(wide_wrong == 0);
   BOOST_TEST(wide_integer > 10000);  // non-zero answers, not only ties
-  // Near ties whose differences are not doubles: a cube's corners (side h) with its low corner
-  // at a generic place between h/16 and h from the origin on each axis (either side of it): the
-  // coordinates differ in magnitude by more than a factor 2, so their differences are rarely
-  // exact doubles and the direct integer path cannot take them, and the rounding of the far
-  // corners leaves the five cospherical up to an ulp, which no filter decides. integer_rows'
-  // second path (the points moved, then read as integers) must, with CGAL's signs: the
-  // in-sphere of five corners, the orientation of a face's four, and the equatorial ball of
-  // three of a face's corners against the fourth.
-  int moved_wrong = 0, moved_decided = 0, moved_filtered = 0;
-  std::uniform_int_distribution<int> side_sign(0, 1);
+  // Near ties whose differences are not doubles: a box's corners (side h) whose low corner lies
+  // between h/16 and h/4 from the origin on each axis (either side of it), so that the coordinates
+  // of one call differ in magnitude by more than a factor 2 and their differences are rarely
+  // exact doubles: the direct integer path cannot take them. Half the boxes sit on the third axis
+  // instead 1000-2000 h from the origin: their integers then fit only once that axis is moved by a
+  // multiple of s (integer_rows' t != 0). The corners are exact ties; one coordinate of the
+  // query corner, or of the fourth corner, is moved 1-3 ulps, which no filter decides. The moved
+  // integers (integer_rows' second path) must decide them all, with CGAL's signs: the in-sphere
+  // of five corners, the orientation of a face's four, the equatorial ball of three of a face's
+  // corners against the fourth.
+  int moved_wrong = 0, moved_decided = 0, moved_nonzero = 0, far_decided = 0;
+  std::uniform_int_distribution<int> side_sign(0, 1), ulps(1, 3), which_axis(0, 2);
   for (int it = 0; it < 20000; ++it) {
     const double h = spacing(g);
+    const bool far = it % 2 == 1;
     point3 base;
-    for (auto& x : base) x = (side_sign(g) ? 1.0 : -1.0) * h * (1.0 / 16 + unit(g) * 15 / 16);
+    for (auto& x : base) x = (side_sign(g) ? 1.0 : -1.0) * h * (1.0 / 16 + unit(g) * 3 / 16);
+    if (far) base[2] = (side_sign(g) ? 1.0 : -1.0) * h * (1000 + 1000 * unit(g));
     auto corner = [&](unsigned bits) {
       point3 p = base;
       for (std::size_t a = 0; a < 3; ++a)
         if ((bits >> a) & 1) p[a] = base[a] + h;
       return p;
     };
-    const std::array<point3, 5> q = {corner(1), corner(2), corner(3), corner(4), corner(5)};
+    auto nudge = [&](point3 p) {
+      double& x = p[static_cast<std::size_t>(which_axis(g))];
+      const double to = side_sign(g) ? 1e300 : -1e300;
+      for (int n = ulps(g); n > 0; --n) x = std::nextafter(x, to);
+      return p;
+    };
+    const std::array<point3, 5> q = {corner(1), corner(2), corner(3), corner(4), nudge(corner(5))};
     const auto cq = [&](int i) { return cg(q[static_cast<std::size_t>(i)]); };
     const int cs = static_cast<int>(k.side_of_oriented_sphere_3_object()(cq(0), cq(1), cq(2), cq(3), cq(4)));
     const int fs = fx::in_sphere(q[0], q[1], q[2], q[3], q[4]);
-    moved_decided += fs != fx::undecided;
+    moved_decided += fs != fx::undecided, far_decided += far && fs != fx::undecided, moved_nonzero += cs != 0;
     moved_wrong += (fs != fx::undecided && fs != cs) + (in_sphere(q[0], q[1], q[2], q[3], q[4]) != cs);
-    const std::array<point3, 4> f = {corner(0), corner(1), corner(2), corner(3)};
+    const std::array<point3, 4> f = {corner(0), corner(1), corner(2), nudge(corner(3))};
     const auto cf = [&](int i) { return cg(f[static_cast<std::size_t>(i)]); };
     const int co = static_cast<int>(k.orientation_3_object()(cf(0), cf(1), cf(2), cf(3)));
     const int fo = fx::orient3d(f[0], f[1], f[2], f[3]);
-    moved_decided += fo != fx::undecided;
+    moved_decided += fo != fx::undecided, far_decided += far && fo != fx::undecided, moved_nonzero += co != 0;
     moved_wrong += fo != fx::undecided && fo != co;
     const int ce = static_cast<int>(k.side_of_bounded_sphere_3_object()(cf(0), cf(1), cf(2), cf(3)));
     const int fe = fx::in_equatorial(f[0], f[1], f[2], f[3]);
-    moved_decided += fe != fx::undecided;
+    moved_decided += fe != fx::undecided, far_decided += far && fe != fx::undecided, moved_nonzero += ce != 0;
     moved_wrong += fe != fx::undecided && fe != ce;
-    // what the direct path alone would have decided: the differences all exact doubles
-    bool exact = true;
-    for (std::size_t i = 0; i < 4; ++i)
-      for (std::size_t a = 0; a < 3; ++a) {
-        const double x = q[i][a] - q[4][a];
-        exact = exact && x + q[4][a] == q[i][a] && q[i][a] - x == q[4][a];
-      }
-    moved_filtered += exact;
   }
   BOOST_TEST(moved_wrong == 0);
-  BOOST_TEST(moved_decided > 59000);    // all but a few, whose corners reach below 2^-59 of the side
-  BOOST_TEST(moved_filtered < 10000);   // and half of the in-sphere calls at least needed the move
+  BOOST_TEST(moved_decided > 59000);  // all but a few, whose low corner's last bit lies too far down
+  BOOST_TEST(far_decided > 29500);    // the far boxes too: the moved axis
+  BOOST_TEST(moved_nonzero > 40000);  // the nudges broke the ties (a nudge along a face leaves some)
   BOOST_TEST_MESSAGE("fixed predicates decided " << decided[0] << ", " << decided[1] << ", " << decided[2]
                                                  << "; exact zeros " << ties[0] << ", " << ties[1] << ", " << ties[2]
                                                  << "; in-sphere tests left to CGAL " << to_cgal
                                                  << "; wide near-ties answered " << wide_integer
                                                  << "; near ties at generic coordinates decided " << moved_decided
-                                                 << " of 60000 (in-sphere differences all doubles " << moved_filtered << " of 20000)");
+                                                 << " of 60000 (far from the origin " << far_decided << " of 30000; non-zero "
+                                                 << moved_nonzero << ")");
 }

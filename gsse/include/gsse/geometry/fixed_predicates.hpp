@@ -25,6 +25,12 @@
 
 #include "gsse/geometry/point.hpp"
 
+// The exactness tests (a two-sum's tail) and the filters' error bounds assume IEEE arithmetic
+// as written: value-changing optimisations would make the signs wrong.
+#if defined(__FAST_MATH__)
+#error "gsse/geometry/fixed_predicates.hpp needs IEEE floating point: do not compile it with -ffast-math"
+#endif
+
 namespace gsse::geometry::fixed {
 
 inline constexpr int undecided = 2;
@@ -157,13 +163,16 @@ bool to_integers(const std::array<std::array<double, 3>, M>& v, int span, std::a
 /// First the differences themselves, where each is exactly a double and they fit in 61 bits at
 /// the scale of the smallest set bit among them (a lattice, a facet's subdivision points). Else
 /// the points and o moved together by t, per axis 0 or a multiple of the power of two s just
-/// above their spread (then every coordinate minus t is exact), each moved coordinate read as an
-/// integer below 2^60 at the scale of the smallest set bit among them, and the rows their
-/// differences, exactly: a translation changes none of the signs. That fits wherever the points
-/// lie close together and no coordinate of theirs is far below their spread without being 0
-/// (points made by a front rule, circumcentres, a rotated input's vertices, whose differences
-/// are rarely exact doubles: they went to CGAL's multi-precision fallback, about half of a
-/// `--fill rules` run).
+/// above their spread (each moved coordinate is checked exact; any t would do for the sign, this
+/// one makes them exact and small), each moved coordinate read as an integer below 2^60 at the
+/// scale of the smallest set bit among them, and the rows their differences, exactly: a
+/// translation changes none of the signs. On an axis far from 0 (|o| >= 2s) the differences are
+/// exact already; moving it matters where such an axis meets one near 0, whose coordinates'
+/// last bits lie far below the far axis's top. It fails when the lowest set bit of all lies more
+/// than 59 bits below the highest moved coordinate (up to about 3s): a generic coordinate on an
+/// axis near 0 smaller than about 2^-6 of the spread, or 0 next to such a one (points made by a
+/// front rule, circumcentres, a rotated input's vertices mostly fit: near ties among them went
+/// to CGAL's multi-precision fallback, about half of a `--fill rules` run).
 template <std::size_t N>
 bool integer_rows(const std::array<const point3*, N>& pts, const point3& o, std::array<std::array<std::int64_t, 3>, N>& rows) {
   {
