@@ -185,13 +185,12 @@ bool integer_rows(const std::array<const point3*, N>& pts, const point3& o, std:
   double spread = 0;
   for (std::size_t i = 0; i < N; ++i)
     for (std::size_t k = 0; k < 3; ++k) spread = std::max(spread, std::abs((*pts[i])[k] - o[k]));
-  if (!(spread > 0) || !(spread < 0x1p900)) return false;  // also NaN
+  if (!(spread > 0) || !(spread < 0x1p900)) return false;  // an infinite o too; a NaN fails exact_difference below
   int e;
   std::frexp(spread, &e);
   const double s = std::ldexp(1.0, e);  // a power of two above the spread
   std::array<std::array<double, 3>, N + 1> v;  // the points, then o, moved by t
   for (std::size_t k = 0; k < 3; ++k) {
-    if (!std::isfinite(o[k])) return false;
     // a coordinate below 2s stays where it is (moved by a multiple of s it could only grow and
     // lose its last bits); else every one on this axis is at least s, their last bits at or
     // above s 2^-52, and minus the multiple of s nearest o, at most 1.5 s: exact
