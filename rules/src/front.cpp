@@ -33,8 +33,35 @@ std::string fmt(double x) {
 }
 
 template <std::size_t D>
-front_result<D> apply_impl(const front_rule& r, std::span<const point<D>, D> base, std::span<const point<D>> cloud,
-                           double h) {
+front_frame<D> prepare_impl(std::span<const point<D>, D> base, std::span<const point<D>> cloud, double h,
+                            double reach = std::numeric_limits<double>::infinity()) {
+  front_frame<D> f;
+  f.frame = make_unit_frame<D>(base, h);
+  for (std::size_t i = 0; i < D; ++i) f.base[i] = base[i];
+  f.cloud = cloud;
+  for (const auto& ax : f.frame.axes)
+    if (!(h > 0) || !is_finite(ax)) f.degenerate = true;
+  if (f.degenerate) return f;
+  for (std::size_t i = 0; i < D; ++i) f.base_unit[i] = lift<D>(f.frame.to_unit(base[i]));
+  f.cloud_unit.resize(cloud.size());
+  f.at_base.assign(cloud.size(), 0);
+  // beyond reach (world distance over h, above it by far more than rounding): never looked at
+  const double far2 = reach * h * reach * h * (1 + 1e-6);
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < cloud.size(); ++k) {
+    if (!(squared_distance(cloud[k], base[0]) <= far2)) {
+      f.cloud_unit[k] = {inf, inf, inf};
+      continue;
+    }
+    f.cloud_unit[k] = lift<D>(f.frame.to_unit(cloud[k]));
+    for (std::size_t i = 0; i < D; ++i)
+      if (distance(f.cloud_unit[k], f.base_unit[i]) < same_point) f.at_base[k] = 1;
+  }
+  return f;
+}
+
+template <std::size_t D>
+front_result<D> apply_impl(const front_rule& r, std::span<const convex_piece> zone, const front_frame<D>& f) {
   front_result<D> res;
   auto reject = [&](rejection why, std::string detail) {
     res.reason = why;
@@ -43,13 +70,13 @@ front_result<D> apply_impl(const front_rule& r, std::span<const point<D>, D> bas
   };
   if (r.dimension != static_cast<int>(D) || r.points.size() < D)
     return reject(rejection::degenerate_base, "rule '" + r.name + "' is not a " + std::to_string(D) + "D rule");
-  const auto frame = make_unit_frame<D>(base, h);
-  for (const auto& ax : frame.axes)
-    if (!(h > 0) || !is_finite(ax)) return reject(rejection::degenerate_base, "degenerate base or h <= 0");
+  if (f.degenerate) return reject(rejection::degenerate_base, "degenerate base or h <= 0");
+  std::vector<convex_piece> own_zone;
+  if (zone.size() != r.free_zone.size()) own_zone = zone_of(r), zone = own_zone;
 
   std::vector<point3> act(r.vertex_count());
   for (std::size_t i = 0; i < D; ++i) {
-    act[i] = lift<D>(frame.to_unit(base[i]));
+    act[i] = f.base_unit[i];
     const double dev = distance(act[i], r.points[i].ref);
     res.error = std::max(res.error, dev);
     if (dev > r.points[i].tol)
@@ -57,13 +84,13 @@ front_result<D> apply_impl(const front_rule& r, std::span<const point<D>, D> bas
                                               " > " + fmt(r.points[i].tol));
   }
 
-  std::vector<point3> cu(cloud.size());
-  std::vector<char> used(cloud.size(), 0);
-  for (std::size_t k = 0; k < cloud.size(); ++k) {
-    cu[k] = lift<D>(frame.to_unit(cloud[k]));
-    for (std::size_t i = 0; i < D; ++i)
-      if (distance(cu[k], act[i]) < same_point) used[k] = 1;
-  }
+  const auto& cloud = f.cloud;
+  const auto& cu = f.cloud_unit;
+  // the cloud points taken: those at a base vertex, then the matched ones (a copy only if the
+  // rule matches any)
+  std::vector<char> own_used;
+  if (r.points.size() > D) own_used = f.at_base;
+  const std::vector<char>& used = r.points.size() > D ? own_used : f.at_base;
 
   // matched points: nearest unused cloud point to the reference position
   for (std::size_t i = D; i < r.points.size(); ++i) {
@@ -79,7 +106,7 @@ front_result<D> apply_impl(const front_rule& r, std::span<const point<D>, D> bas
     if (best_d > r.points[i].tol)
       return reject(rejection::tolerance, "nearest point to '" + r.points[i].name + "' deviates by " +
                                               fmt(best_d) + " > " + fmt(r.points[i].tol));
-    used[best] = 1;
+    own_used[best] = 1;
     res.matched.push_back(best);
     act[i] = cu[best];
   }
@@ -93,8 +120,8 @@ front_result<D> apply_impl(const front_rule& r, std::span<const point<D>, D> bas
 
   for (std::size_t k = 0; k < cloud.size(); ++k) {
     if (used[k]) continue;
-    for (const auto& piece : r.free_zone)
-      if (in_convex_piece(r.dimension, piece, cu[k], zone_margin))
+    for (const auto& piece : zone)
+      if (piece.contains(cu[k], zone_margin))
         return reject(rejection::free_zone, "cloud point " + std::to_string(k) + " lies in the free zone");
   }
 
@@ -114,9 +141,9 @@ front_result<D> apply_impl(const front_rule& r, std::span<const point<D>, D> bas
     if (!positive(o)) return reject(rejection::orientation, "orientation (" + names(o) + ") is violated");
 
   res.vertices.resize(act.size());
-  for (std::size_t i = 0; i < D; ++i) res.vertices[i] = base[i];
+  for (std::size_t i = 0; i < D; ++i) res.vertices[i] = f.base[i];
   for (std::size_t i = D; i < r.points.size(); ++i) res.vertices[i] = cloud[res.matched[i - D]];
-  for (std::size_t i = r.points.size(); i < act.size(); ++i) res.vertices[i] = frame.to_world(drop<D>(act[i]));
+  for (std::size_t i = r.points.size(); i < act.size(); ++i) res.vertices[i] = f.frame.to_world(drop<D>(act[i]));
   return res;
 }
 
@@ -156,45 +183,63 @@ double orientation(int dimension, std::span<const point3> p) {
   return dot(cross(p[1] - p[0], p[2] - p[0]), p[3] - p[0]);
 }
 
-bool in_convex_piece(int dimension, std::span<const point3> piece, const point3& u, double margin) {
+convex_piece convex_piece::of(int dimension, std::span<const point3> piece) {
   // The hull is the intersection of all supporting lines (planes) through 2 (3) of its points.
-  const std::size_t n = piece.size();
-  // outside the bounding box (by more than -margin): outside the hull; the cheap test first
-  for (int a = 0; a < (dimension == 2 ? 2 : 3); ++a) {
-    double lo = piece[0][a], hi = piece[0][a];
-    for (const auto& q : piece) lo = std::min(lo, q[a]), hi = std::max(hi, q[a]);
-    if (u[a] < lo + margin - eps || u[a] > hi - margin + eps) return false;
+  convex_piece z;
+  z.dimension = dimension;
+  if (piece.empty()) return z;
+  for (int a = 0; a < 3; ++a) {
+    z.lo[a] = z.hi[a] = piece[0][a];
+    for (const auto& q : piece) z.lo[a] = std::min(z.lo[a], q[a]), z.hi[a] = std::max(z.hi[a], q[a]);
   }
-  bool any = false;
-  auto test = [&](const point3& o, const point3& normal) {  // normal has unit length
+  const std::size_t n = piece.size();
+  auto add = [&](const point3& o, const point3& normal) {  // normal has unit length
     bool pos = false, neg = false;
     for (const auto& q : piece) {
       const double s = dot(q - o, normal);
       pos |= s > eps;
       neg |= s < -eps;
     }
-    if (pos == neg) return true;  // not supporting (or degenerate): no constraint
-    any = true;
-    const double s = dot(u - o, normal);
-    return (pos ? s : -s) >= margin;
+    if (pos != neg) z.planes.push_back({o, normal, pos});  // else not supporting (or degenerate): no constraint
   };
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j) {
       const point3 d = piece[j] - piece[i];
       if (dimension == 2) {
         const double l = std::hypot(d[0], d[1]);
-        if (!(l > eps)) continue;
-        if (!test(piece[i], {-d[1] / l, d[0] / l, 0})) return false;
+        if (l > eps) add(piece[i], {-d[1] / l, d[0] / l, 0});
         continue;
       }
       for (std::size_t k = j + 1; k < n; ++k) {
         const point3 c = cross(d, piece[k] - piece[i]);
         const double l = std::sqrt(dot(c, c));
-        if (!(l > eps)) continue;
-        if (!test(piece[i], (1.0 / l) * c)) return false;
+        if (l > eps) add(piece[i], (1.0 / l) * c);
       }
     }
-  return any;
+  return z;
+}
+
+bool convex_piece::contains(const point3& u, double margin) const {
+  if (planes.empty()) return false;  // an empty or flat piece holds nothing
+  // outside the bounding box (by more than -margin): outside the hull; the cheap test first
+  for (int a = 0; a < (dimension == 2 ? 2 : 3); ++a)
+    if (u[a] < lo[a] + margin - eps || u[a] > hi[a] - margin + eps) return false;
+  for (const auto& p : planes) {
+    const double s = dot(u - p.o, p.normal);
+    if (!((p.positive ? s : -s) >= margin)) return false;
+  }
+  return true;
+}
+
+bool in_convex_piece(int dimension, std::span<const point3> piece, const point3& u, double margin) {
+  return convex_piece::of(dimension, piece).contains(u, margin);
+}
+
+std::vector<convex_piece> zone_of(const front_rule& r) {
+  std::vector<convex_piece> z;
+  z.reserve(r.free_zone.size());
+  for (const auto& piece : r.free_zone) z.push_back(convex_piece::of(r.dimension, piece));
+  return z;
 }
 
 std::string_view to_string(rejection r) {
@@ -203,11 +248,31 @@ std::string_view to_string(rejection r) {
   return names[static_cast<int>(r)];
 }
 
+front_frame<2> prepare(std::span<const point2, 2> base, std::span<const point2> cloud, double h, double reach) {
+  return prepare_impl<2>(base, cloud, h, reach);
+}
+front_frame<3> prepare(std::span<const point3, 3> base, std::span<const point3> cloud, double h, double reach) {
+  return prepare_impl<3>(base, cloud, h, reach);
+}
+double reach(const front_rule& r) {
+  double most = 0;
+  for (const auto& piece : r.free_zone)
+    for (const auto& v : piece) most = std::max(most, std::sqrt(dot(v, v)));
+  for (std::size_t i = r.dimension > 0 ? static_cast<std::size_t>(r.dimension) : 0; i < r.points.size(); ++i)
+    most = std::max(most, std::sqrt(dot(r.points[i].ref, r.points[i].ref)) + r.points[i].tol);
+  return most;
+}
+front_result<2> apply(const front_rule& r, std::span<const convex_piece> zone, const front_frame<2>& f) {
+  return apply_impl<2>(r, zone, f);
+}
+front_result<3> apply(const front_rule& r, std::span<const convex_piece> zone, const front_frame<3>& f) {
+  return apply_impl<3>(r, zone, f);
+}
 front_result<2> apply(const front_rule& r, std::span<const point2, 2> base, std::span<const point2> cloud, double h) {
-  return apply_impl<2>(r, base, cloud, h);
+  return apply_impl<2>(r, zone_of(r), prepare_impl<2>(base, cloud, h));
 }
 front_result<3> apply(const front_rule& r, std::span<const point3, 3> base, std::span<const point3> cloud, double h) {
-  return apply_impl<3>(r, base, cloud, h);
+  return apply_impl<3>(r, zone_of(r), prepare_impl<3>(base, cloud, h));
 }
 
 }  // namespace gsse::rules

@@ -2,6 +2,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "gsse/rules/defaults.hpp"
@@ -29,6 +30,37 @@ const front_rule& named(const rule_set& s, const std::string& n) {
   for (const auto& r : s.front.rules)
     if (r.name == n) return r;
   throw std::runtime_error("no rule " + n);
+}
+
+// Two 2D rules that match an existing point (one with a free zone, one loose without).
+const rule_set& matching_rules() {
+  static const auto s = [] {
+    auto r = parse_rules(R"(dimension 2
+front close
+  quality 1
+  base a b
+  match q at 0.5 0.8 tol 0.25
+  element a b q
+  remove a b
+  add a q
+  add q b
+  free 0 0, 1 0, 0.5 0.6
+end
+front close-loose
+  quality 1
+  tolerance 2
+  base a b
+  match q at 0.5 0.3
+  element a b q
+  remove a b
+  add a q
+  add q b
+end
+)");
+    require_valid(r);
+    return r;
+  }();
+  return s;
 }
 
 // The escalation the mesher performs: the first rule of the lowest class that accepts.
@@ -167,29 +199,7 @@ BOOST_AUTO_TEST_CASE(degenerate_base) {
 
 // A custom rule that matches an existing point instead of creating one.
 BOOST_AUTO_TEST_CASE(matching_an_existing_point) {
-  const auto s = parse_rules(R"(dimension 2
-front close
-  quality 1
-  base a b
-  match q at 0.5 0.8 tol 0.25
-  element a b q
-  remove a b
-  add a q
-  add q b
-  free 0 0, 1 0, 0.5 0.6
-end
-front close-loose
-  quality 1
-  tolerance 2
-  base a b
-  match q at 0.5 0.3
-  element a b q
-  remove a b
-  add a q
-  add q b
-end
-)");
-  require_valid(s);
+  const auto& s = matching_rules();
   const auto& r = s.front.rules[0];
   const std::array<point2, 2> base{{{0, 0}, {1, 0}}};
   const std::vector<point2> cloud{{3, 0}, {0.55, 0.75}, {0.5, 1.2}};
@@ -223,6 +233,111 @@ BOOST_AUTO_TEST_CASE(convex_piece_test) {
   BOOST_TEST(in_convex_piece(3, cube, {0.5, 0.5, 0.5}, 1e-9));
   BOOST_TEST(!in_convex_piece(3, cube, {0.5, 0.5, 1.01}, 0));
   BOOST_TEST(!in_convex_piece(3, cube, {1.01, 0.5, 0.5}, 0));
+}
+
+// The prepared path the mesher takes (one unit frame per face rotation for all rules, the free
+// zones made ready, only the cloud within the rules' reach mapped) decides as apply(r, base,
+// cloud, h) does: random faces and clouds, points put in and next to the free zones, at the base
+// vertices and next to the matched points' references. (A rejection's reason may differ in one
+// way: a matched point whose nearest cloud point lies beyond reach is "no match" where the full
+// mapping says "tolerance exceeded".)
+template <std::size_t D>
+void prepared_agrees(const std::vector<const front_rule*>& rules, unsigned seed, std::size_t& accepted, std::size_t& rejected) {
+  std::mt19937_64 g(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  double reach_all = 0;
+  for (const auto* r : rules) reach_all = std::max(reach_all, reach(*r));
+  for (int trial = 0; trial < 4000; ++trial) {
+    const double h = std::ldexp(1.0, static_cast<int>(g() % 7) - 3) * (1 + 0.1 * u(g));
+    point<D> origin;
+    for (auto& x : origin) x = 10 * u(g);
+    // a face near the reference base, turned (3D: about a random axis), scaled by h
+    std::array<point<D>, D> base;
+    std::array<point3, 3> ref{base_reference(static_cast<int>(D), 0), base_reference(static_cast<int>(D), 1), base_reference(static_cast<int>(D), 2)};
+    const double a = 3.2 * u(g), b = 3.2 * u(g);
+    auto turn = [&](point3 v) {
+      point3 w{std::cos(a) * v[0] - std::sin(a) * v[1], std::sin(a) * v[0] + std::cos(a) * v[1], v[2]};
+      if constexpr (D == 3) w = {w[0], std::cos(b) * w[1] - std::sin(b) * w[2], std::sin(b) * w[1] + std::cos(b) * w[2]};
+      return w;
+    };
+    auto world = [&](point3 v) {
+      const point3 w = turn(v);
+      point<D> q;
+      for (std::size_t k = 0; k < D; ++k) q[k] = origin[k] + h * w[k];
+      return q;
+    };
+    for (std::size_t i = 0; i < D; ++i) {
+      point3 v = ref[i];
+      for (std::size_t k = 0; k < D; ++k) v[k] += 0.15 * u(g);
+      base[i] = world(v);
+    }
+    std::vector<point<D>> cloud(base.begin(), base.end());
+    const std::size_t n = g() % 24;
+    for (std::size_t j = 0; j < n; ++j) {
+      point3 v{};
+      const auto* r = rules[g() % rules.size()];
+      switch (g() % 4) {
+        case 0:  // anywhere within 3.5 h, most of it beyond every rule's reach
+          for (std::size_t k = 0; k < D; ++k) v[k] = 3.5 * u(g);
+          break;
+        case 1:  // next to a free-zone vertex
+          if (!r->free_zone.empty()) {
+            const auto& piece = r->free_zone[g() % r->free_zone.size()];
+            v = piece[g() % piece.size()];
+          }
+          for (std::size_t k = 0; k < D; ++k) v[k] += 0.3 * u(g);
+          break;
+        case 2:  // next to a matched point's reference, or a created point's
+          v = r->reference(D + g() % (r->vertex_count() - D));
+          for (std::size_t k = 0; k < D; ++k) v[k] += 0.4 * u(g);
+          break;
+        default:  // just beyond the reach of the farthest rule
+          for (std::size_t k = 0; k < D; ++k) v[k] = u(g);
+          v = (reach_all * (1 + 1e-3 * (1 + u(g))) / std::sqrt(dot(v, v) + 1e-300)) * v;
+          break;
+      }
+      if constexpr (D == 2) v[2] = 0;
+      cloud.push_back(world(v));
+    }
+    std::array<front_frame<D>, D == 3 ? 3 : 1> frames;
+    for (std::size_t rot = 0; rot < frames.size(); ++rot) {
+      std::array<point<D>, D> turned;
+      for (std::size_t i = 0; i < D; ++i) turned[i] = base[(i + rot) % D];
+      frames[rot] = prepare(std::span<const point<D>, D>(turned), std::span<const point<D>>(cloud), h, reach_all);
+    }
+    for (const auto* r : rules) {
+      const auto zone = zone_of(*r);
+      for (std::size_t rot = 0; rot < frames.size(); ++rot) {
+        std::array<point<D>, D> turned;
+        for (std::size_t i = 0; i < D; ++i) turned[i] = base[(i + rot) % D];
+        const auto full = apply(*r, std::span<const point<D>, D>(turned), std::span<const point<D>>(cloud), h);
+        const auto fast = apply(*r, zone, frames[rot]);
+        BOOST_REQUIRE_EQUAL(static_cast<bool>(full), static_cast<bool>(fast));
+        if (full) {
+          ++accepted;
+          BOOST_REQUIRE(full.matched == fast.matched);
+          BOOST_REQUIRE_EQUAL(full.error, fast.error);
+          BOOST_REQUIRE(full.vertices == fast.vertices);
+        } else {
+          ++rejected;
+          if (full.reason != fast.reason)
+            BOOST_REQUIRE((full.reason == rejection::tolerance && fast.reason == rejection::no_match));
+        }
+      }
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(prepared_frames_decide_as_apply) {
+  std::size_t accepted = 0, rejected = 0;
+  std::vector<const front_rule*> r2 = f2().front.eligible(1000);
+  for (const auto& r : matching_rules().front.rules) r2.push_back(&r);
+  prepared_agrees<2>(r2, 7, accepted, rejected);
+  prepared_agrees<3>(f3().front.eligible(1000), 11, accepted, rejected);
+  BOOST_TEST_MESSAGE("accepted " << accepted << ", rejected " << rejected);
+  // both outcomes are exercised, many times
+  BOOST_TEST(accepted > 2000u);
+  BOOST_TEST(rejected > 2000u);
 }
 
 // The worked example of docs/rules.md.

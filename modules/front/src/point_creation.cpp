@@ -286,17 +286,12 @@ class creator {
         st_(st),
         balls_(lower(grid), upper(grid), o.h, 8 * grid.size() + 64, 512),
         eligible_(o.rules->eligible(std::numeric_limits<int>::max())) {
-    // how far from a face rule geometry reaches, in units of h
-    for (const auto* r : eligible_) {
-      for (const auto& piece : r->free_zone)
-        for (const auto& v : piece) reach_ = std::max(reach_, std::sqrt(dot(v, v)));
-      for (std::size_t v = 0; v < r->vertex_count(); ++v) {
-        const point3 u = r->reference(v);
-        const double tol = v < r->points.size() ? r->points[v].tol : 0;
-        reach_ = std::max(reach_, std::sqrt(dot(u, u)) + tol);
-      }
-    }
-    reach_ += 0.5;
+    // how far from a face's vertex the rules look, in units of h (rules::reach): the cloud is
+    // gathered within that of the face's vertices (a hair more than what rules::prepare maps, so
+    // that nothing it maps is missing; until 2026-12-03 every rule vertex's reach plus h / 2, whose
+    // extra points rules::prepare now leaves at infinity, unmapped)
+    for (const auto* r : eligible_) zones_.push_back(rules::zone_of(*r)), unit_reach_ = std::max(unit_reach_, rules::reach(*r));
+    reach_ = unit_reach_ * (1 + 1e-5);
   }
 
   using result = typename gift_wrapper<K>::creation;
@@ -328,15 +323,23 @@ class creator {
     grid_.visit_box(lo, hi, gather);
     overlay_.visit_box(lo, hi, gather);
 
+    // the face in each of its rotations (same orientation), each mapped to its unit frame once
+    // for all the rules tried on it
+    constexpr std::size_t rotations = D == 3 ? 3 : 1;
+    std::array<rules::front_frame<D>, rotations> frames;
+    for (std::size_t rot = 0; rot < rotations; ++rot) {
+      std::array<point<D>, D> base;
+      for (std::size_t i = 0; i < D; ++i) base[i] = pts_[f[(i + rot) % D]];
+      frames[rot] = rules::prepare(std::span<const point<D>, D>(base), std::span<const point<D>>(cloud_), o_.h, unit_reach_);
+    }
     bool any_accepted = false;
-    for (const auto* r : eligible_) {
-      // the face in each of its rotations (same orientation); the best fit wins
+    for (std::size_t ri = 0; ri < eligible_.size(); ++ri) {
+      const auto* r = eligible_[ri];
+      // the best fit over the rotations wins
       rules::front_result<D> best;
       bool found = false;
-      for (std::size_t rot = 0; rot < (D == 3 ? 3u : 1u); ++rot) {
-        std::array<point<D>, D> base;
-        for (std::size_t i = 0; i < D; ++i) base[i] = pts_[f[(i + rot) % D]];
-        auto res = rules::apply(*r, std::span<const point<D>, D>(base), std::span<const point<D>>(cloud_), o_.h);
+      for (const auto& frame : frames) {
+        auto res = rules::apply(*r, zones_[ri], frame);
         if (res && (!found || res.error < best.error)) best = std::move(res), found = true;
       }
       if (!found) continue;
@@ -420,6 +423,8 @@ class creator {
   const std::vector<cell>* cells_ = nullptr;
   std::size_t indexed_ = 0;
   std::vector<const rules::front_rule*> eligible_;
+  std::vector<std::vector<rules::convex_piece>> zones_;  // each eligible rule's free zone, made ready
+  double unit_reach_ = 0;  // the farthest any eligible rule looks from a face's first vertex (rules::reach)
   std::vector<point<D>> cloud_;
   double reach_ = 0;
 };

@@ -3,12 +3,15 @@
 // Rule vertices are numbered in one index space: [0, D) the base vertices, then the matched
 // points, then the new points (front_rule::points holds base + matched, front_rule::created the
 // new ones). Elements, faces and orientation conditions are lists of such indices.
+#include <array>
 #include <cstddef>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "gsse/geometry/point.hpp"
+#include "gsse/rules/unit_frame.hpp"
 
 namespace gsse::rules {
 
@@ -72,6 +75,24 @@ double orientation(int dimension, std::span<const point3> p);
 /// every supporting line/plane (margin < 0 admits points slightly outside).
 bool in_convex_piece(int dimension, std::span<const point3> piece, const point3& u, double margin);
 
+/// A free-zone piece made ready for many questions: its bounding box and its supporting lines
+/// (2D) or planes (3D), each through two (three) of its points, in the order in_convex_piece
+/// tries them. `contains(u, margin)` is in_convex_piece(dimension, piece, u, margin), the same
+/// arithmetic, without finding the supporting planes again: that search over every triple and
+/// every point of the piece was an eighth of a `--fill rules` run (docs/benchmarks.md,
+/// forty-ninth part).
+struct convex_piece {
+  struct plane {
+    point3 o{}, normal{};  // through o, unit normal
+    bool positive = true;  // the piece lies on the normal's side
+  };
+  int dimension = 2;
+  point3 lo{}, hi{};  // the bounding box (the first D axes)
+  std::vector<plane> planes;
+  static convex_piece of(int dimension, std::span<const point3> piece);
+  bool contains(const point3& u, double margin) const;
+};
+
 enum class rejection { none, degenerate_base, tolerance, no_match, free_zone, orientation };
 std::string_view to_string(rejection r);
 
@@ -98,5 +119,39 @@ front_result<2> apply(const front_rule& r, std::span<const point2, 2> base, std:
                       double h);
 front_result<3> apply(const front_rule& r, std::span<const point3, 3> base, std::span<const point3> cloud,
                       double h);
+
+/// The free zone of r made ready (convex_piece::of of each piece), for the apply below.
+std::vector<convex_piece> zone_of(const front_rule& r);
+
+/// What every rule tried on one front element (in one rotation of its vertices) shares: the
+/// element's unit frame and the nearby points mapped into it. A mesher that tries several rules
+/// on each element prepares once and applies each rule to the frame: the same results as
+/// apply(r, base, cloud, h), without mapping the cloud again for every rule. The frame keeps a
+/// view of `cloud`, which must outlive it. With `reach` (unit lengths: the farthest from the
+/// first base vertex any rule looks, free-zone vertices and matched points' references plus their
+/// tolerance; rules::reach gives it) only the cloud points within it are mapped: a point beyond
+/// lies in no free zone and matches no point, and it is kept at infinity, where every rule
+/// ignores it (the same results: no point a rule can see is left out).
+template <std::size_t D>
+struct front_frame {
+  unit_frame<D> frame;
+  bool degenerate = false;           // the base is degenerate or h <= 0: every rule rejects
+  std::array<point<D>, D> base{};    // world positions of the base vertices
+  std::array<point3, D> base_unit{}; // and in the unit frame (z = 0 in 2D)
+  std::span<const point<D>> cloud;   // the nearby points, world positions
+  std::vector<point3> cloud_unit;    // and in the unit frame
+  std::vector<char> at_base;         // a cloud point within 1e-9 (unit) of a base vertex is that vertex
+};
+front_frame<2> prepare(std::span<const point2, 2> base, std::span<const point2> cloud, double h,
+                       double reach = std::numeric_limits<double>::infinity());
+front_frame<3> prepare(std::span<const point3, 3> base, std::span<const point3> cloud, double h,
+                       double reach = std::numeric_limits<double>::infinity());
+/// How far from the first base vertex (unit lengths) rule r looks at the cloud: its free-zone
+/// vertices, and its matched points' references plus their tolerances.
+double reach(const front_rule& r);
+/// apply(r, base, cloud, h) for the frame's element; `zone` is zone_of(r) (computed here if its
+/// size is not that of r's free zone).
+front_result<2> apply(const front_rule& r, std::span<const convex_piece> zone, const front_frame<2>& f);
+front_result<3> apply(const front_rule& r, std::span<const convex_piece> zone, const front_frame<3>& f);
 
 }  // namespace gsse::rules
