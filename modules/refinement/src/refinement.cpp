@@ -348,7 +348,6 @@ class accepted_points {
     points_.push_back(c);
     for (auto& [k, g] : grids_) g.insert(i, c);
   }
-  std::vector<point<D>>& points() { return points_; }
 
  private:
   std::map<int, hash_grid<D>> grids_;
@@ -938,7 +937,12 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
     return lex_less(a.c, c.c);
   });
   std::vector<std::size_t> split;
+  // the points taken before (circumcentres) and, in 3D, the split faces' circumcentres (below), in
+  // one index: a candidate asks whether any of either lies within apart x r (one query, not one
+  // for each: they were a tenth of the rotated trench's serial time, docs/benchmarks.md,
+  // forty-ninth part)
   accepted_points<D> taken(p.empty() ? point<D>{} : p[0], levels);
+  std::vector<point<D>> added;  // the circumcentres taken, in order
   // 3D: a bad element whose circumcentre encroaches boundary faces asks for their splits only if
   // no point taken before it in the round (a circumcentre, or the circumcentre of a face split for
   // an element before it) lies within `apart` x r of its circumcentre: that point lies in its
@@ -966,11 +970,10 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   const bool filter_splits = D == 3;
   const bool one_face = D == 3 && no_small_angles;
   const bool largest_face = bound < largest_face_below;
-  accepted_points<D> marks(p.empty() ? point<D>{} : p[0], levels);  // the split faces' circumcentres
   std::vector<char> may_leave;  // per accepted point
   for (const auto& x : all) {
     const auto& c = at(x);
-    auto near = [&] { return taken.any_within(c.c, apart * c.r) || (filter_splits && marks.any_within(c.c, apart * c.r)); };
+    auto near = [&] { return taken.any_within(c.c, apart * c.r); };
     if (c.count > 0) {
       if (filter_splits && near()) continue;
       std::size_t best = 0;
@@ -981,21 +984,22 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
         const point<D> m = filter_splits ? face_centre(f) : point<D>{};
         if (!one_face) {
           split.push_back(f);
-          if (filter_splits) marks.add(m);
+          if (filter_splits) taken.add(m);
         } else {
           // the least score: the distance to the element's circumcentre, or minus the radius
           const double score = largest_face ? -squared_distance(m, bp[b.faces[f][0]]) : squared_distance(m, c.c);
           if (score < closest || (largest_face && score == closest && f < best)) closest = score, best = f, best_at = m;
         }
       }
-      if (one_face) split.push_back(best), marks.add(best_at);
+      if (one_face) split.push_back(best), taken.add(best_at);
       continue;
     }
     if (near()) continue;
     taken.add(c.c);
+    added.push_back(c.c);
     may_leave.push_back(c.may_leave);
   }
-  out.add = std::move(taken.points());
+  out.add = std::move(added);
   // a circumcentre outside every segment that encroaches no subfacet (it may lie in a subsegment's
   // ball only, or outside by rounding) is not inserted: the conformer would project a point from
   // the outside, which it never sees otherwise. Its element stays for a later round. Only the
