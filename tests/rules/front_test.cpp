@@ -288,7 +288,7 @@ void prepared_agrees(const std::vector<const front_rule*>& rules, unsigned seed,
           for (std::size_t k = 0; k < D; ++k) v[k] += 0.3 * u(g);
           break;
         case 2:  // next to a matched point's reference, or a created point's
-          v = r->reference(D + g() % (r->vertex_count() - D));
+          if (r->vertex_count() > D) v = r->reference(D + g() % (r->vertex_count() - D));
           for (std::size_t k = 0; k < D; ++k) v[k] += 0.4 * u(g);
           break;
         default:  // just beyond the reach of the farthest rule
@@ -299,18 +299,17 @@ void prepared_agrees(const std::vector<const front_rule*>& rules, unsigned seed,
       if constexpr (D == 2) v[2] = 0;
       cloud.push_back(world(v));
     }
-    std::array<front_frame<D>, D == 3 ? 3 : 1> frames;
-    for (std::size_t rot = 0; rot < frames.size(); ++rot) {
-      std::array<point<D>, D> turned;
-      for (std::size_t i = 0; i < D; ++i) turned[i] = base[(i + rot) % D];
-      frames[rot] = prepare(std::span<const point<D>, D>(turned), std::span<const point<D>>(cloud), h, reach_all);
+    constexpr std::size_t rotations = D == 3 ? 3 : 1;
+    std::array<std::array<point<D>, D>, rotations> turned;
+    std::array<front_frame<D>, rotations> frames;
+    for (std::size_t rot = 0; rot < rotations; ++rot) {
+      for (std::size_t i = 0; i < D; ++i) turned[rot][i] = base[(i + rot) % D];
+      frames[rot] = prepare(std::span<const point<D>, D>(turned[rot]), std::span<const point<D>>(cloud), h, reach_all);
     }
     for (const auto* r : rules) {
       const auto zone = zone_of(*r);
-      for (std::size_t rot = 0; rot < frames.size(); ++rot) {
-        std::array<point<D>, D> turned;
-        for (std::size_t i = 0; i < D; ++i) turned[i] = base[(i + rot) % D];
-        const auto full = apply(*r, std::span<const point<D>, D>(turned), std::span<const point<D>>(cloud), h);
+      for (std::size_t rot = 0; rot < rotations; ++rot) {
+        const auto full = apply(*r, std::span<const point<D>, D>(turned[rot]), std::span<const point<D>>(cloud), h);
         const auto fast = apply(*r, zone, frames[rot]);
         BOOST_REQUIRE_EQUAL(static_cast<bool>(full), static_cast<bool>(fast));
         if (full) {

@@ -939,7 +939,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   std::vector<std::size_t> split;
   // the points taken before (circumcentres) and, in 3D, the split faces' circumcentres (below), in
   // one index: a candidate asks whether any of either lies within apart x r (one query, not one
-  // for each: they were a tenth of the rotated trench's serial time, docs/benchmarks.md,
+  // for each: their queries were a seventh of the rotated trench's serial time, docs/benchmarks.md,
   // forty-ninth part)
   accepted_points<D> taken(p.empty() ? point<D>{} : p[0], levels);
   std::vector<point<D>> added;  // the circumcentres taken, in order
