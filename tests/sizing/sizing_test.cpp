@@ -14,6 +14,8 @@
 #include "gsse/io/poly.hpp"
 #include "gsse/io/sidecar.hpp"
 #include "gsse/pipeline/pipeline.hpp"
+#include "gsse/sizing/box_tree.hpp"
+#include "gsse/sizing/distance.hpp"
 #include "gsse/sizing/fit.hpp"
 #include "gsse/sizing/inputs.hpp"
 #include "gsse/sizing/place_points.hpp"
@@ -701,6 +703,62 @@ BOOST_AUTO_TEST_CASE(skipped_cubes_and_capped_queries_change_no_point) {
   BOOST_TEST((plain == fast), plain.size() << " points without the skip and the caps, " << fast.size() << " with");
   BOOST_TEST(asked_fast * 4 < asked_plain * 3, asked_fast << " queries with the skip, " << asked_plain << " without");
   BOOST_TEST(capped_fast * 2 > asked_fast, capped_fast << " of " << asked_fast << " queries capped");
+}
+
+// box_tree::graded_min with a warm start (the item that won the caller's last query, asked
+// first): the same minimum as the cold search, bit for bit, whatever the hint (the winner of a
+// query nearby, of one far away, an item that never wins, none, out of range), and the hint comes
+// back as an item whose value is that minimum. Slanted triangles (their boxes reach far off them),
+// exact distances to the triangles, caps above and below the minimum.
+BOOST_AUTO_TEST_CASE(warm_started_field_search_finds_the_cold_minimum) {
+  std::mt19937_64 rng(20261203);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  auto rnd = [&](double lo, double hi) { return lo + (hi - lo) * u(rng); };
+  std::vector<std::array<point3, 3>> tris;
+  std::vector<sizing::aabb<3>> boxes;
+  std::vector<double> values;
+  for (int i = 0; i < 3000; ++i) {
+    const point3 c{rnd(0, 1), rnd(0, 1), rnd(0, 1)};
+    const double r = rnd(0.002, 0.03);
+    std::array<point3, 3> t;
+    for (auto& q : t) q = c + point3{rnd(-r, r), rnd(-r, r), rnd(-r, r)};
+    sizing::aabb<3> b = sizing::aabb<3>::empty();
+    for (const auto& q : t) b.add(q);
+    tris.push_back(t), boxes.push_back(b), values.push_back(rnd(0.001, 0.05));
+  }
+  const sizing::box_tree<3> tree(boxes, values);
+  const double slope = 0.3;
+  std::size_t warm_wins = 0, checked = 0;
+  std::uint32_t carried = ~std::uint32_t{0};  // a placement's hint: the last winner, queries nearby
+  point3 x{0.5, 0.5, 0.5};
+  for (int k = 0; k < 4000; ++k) {
+    x = k % 50 == 0 ? point3{rnd(-0.2, 1.2), rnd(-0.2, 1.2), rnd(-0.2, 1.2)} : x + point3{rnd(-0.01, 0.01), rnd(-0.01, 0.01), rnd(-0.01, 0.01)};
+    auto dist2 = [&](std::uint32_t i, double) { return sizing::face_distance2<3>(tris[i], x); };
+    const double cap = k % 3 == 0 ? std::numeric_limits<double>::infinity() : rnd(0.0, 0.2);
+    const double cold = tree.graded_min(x, slope, cap, dist2);
+    // by brute force: the minimum over every item
+    double brute = cap;
+    for (std::uint32_t i = 0; i < tris.size(); ++i) brute = std::min(brute, values[i] + slope * std::sqrt(dist2(i, 0.0)));
+    BOOST_TEST(cold == brute);
+    const std::uint32_t hints[] = {carried, static_cast<std::uint32_t>(rng() % tris.size()), 0u, ~std::uint32_t{0},
+                                   static_cast<std::uint32_t>(tris.size()) + 7u};
+    for (std::uint32_t h : hints) {
+      std::uint32_t hint = h;
+      const double warm = tree.graded_min(x, slope, cap, dist2, &hint);
+      ++checked;
+      BOOST_TEST(warm == cold, "hint " << h << " at query " << k << ": " << warm << " against " << cold);
+      if (warm < cap) {
+        BOOST_TEST_REQUIRE(hint < tris.size());
+        BOOST_TEST(values[hint] + slope * std::sqrt(dist2(hint, 0.0)) == warm);
+        warm_wins += hint == h;
+      }
+    }
+    std::uint32_t next = carried;
+    tree.graded_min(x, slope, std::numeric_limits<double>::infinity(), dist2, &next);
+    carried = next;
+  }
+  BOOST_TEST(checked == 20000u);
+  BOOST_TEST(warm_wins > 1000u, warm_wins << " queries won by their hint");  // the carried hint often wins
 }
 
 // An interface layer or a box with a growth rate of its own: the size grows away from it at that

@@ -89,7 +89,15 @@ double size_field<D>::capped(const point<D>& x, double cap) const {
     aabb<D> box{b.lo, b.hi};
     v = std::min(v, b.size + (b.grade > 0 ? b.grade - 1 : slope_) * std::sqrt(box.distance2(x)));
   }
-  v = faces_.graded_min(x, slope_, v, [&](std::uint32_t i, double) { return face_distance2<D>(face_pieces_[i], x); });
+  // each thread's last winning piece of this field's face tree starts its next search (queries
+  // come in places near each other: a placement's cubes, a facet's faces); the value found does not
+  // depend on it
+  thread_local struct {
+    const void* tree = nullptr;
+    std::uint32_t item = 0;
+  } last;
+  if (last.tree != &faces_) last = {&faces_, ~std::uint32_t{0}};
+  v = faces_.graded_min(x, slope_, v, [&](std::uint32_t i, double) { return face_distance2<D>(face_pieces_[i], x); }, &last.item);
   for (const auto& L : layers_)
     v = L.tree.graded_min(x, L.slope, v, [&](std::uint32_t i, double) { return face_distance2<D>(L.pieces[i], x); });
   if (background_) v = std::min(v, background_value(x));

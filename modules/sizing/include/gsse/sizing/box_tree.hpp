@@ -78,9 +78,14 @@ class box_tree {
   /// only for items whose box could beat the minimum so far, so an exact distance to the item
   /// itself (a slanted triangle, whose box reaches far off it) costs little more than the box's.
   template <class Distance2>
-  double graded_min(const point<D>& x, double slope, double cap, Distance2&& distance2) const {
+  double graded_min(const point<D>& x, double slope, double cap, Distance2&& distance2, std::uint32_t* hint = nullptr) const {
     double best = cap;
     if (nodes_.empty()) return best;
+    // a warm start: the item that won the caller's last query (nearby, as a placement's are) is
+    // asked first, so that the search prunes with a tight bound from its first node. Its value is
+    // an item's, no smaller than the minimum: the result is the one a cold search gives
+    std::uint32_t won = hint ? *hint : ~std::uint32_t{0};
+    if (won < boxes_.size()) best = std::min(best, values_[won] + slope * std::sqrt(distance2(won, boxes_[won].distance2(x))));
     auto bound = [&](const node& n) { return n.min_value + slope * std::sqrt(n.box.distance2(x)); };
     std::uint32_t stack[128];
     int top = 0;
@@ -93,7 +98,8 @@ class box_tree {
           const std::uint32_t i = order_[k];
           const double d2 = boxes_[i].distance2(x);
           if (values_[i] + slope * std::sqrt(d2) >= best) continue;
-          best = std::min(best, values_[i] + slope * std::sqrt(distance2(i, d2)));
+          const double v = values_[i] + slope * std::sqrt(distance2(i, d2));
+          if (v < best) best = v, won = i;
         }
         continue;
       }
@@ -108,6 +114,7 @@ class box_tree {
         if (br < best) stack[top++] = n.b;
       }
     }
+    if (hint) *hint = won;
     return best;
   }
 
