@@ -76,6 +76,17 @@ sizing::size_field<3> two_triangles(const std::vector<point3>& pts, const std::v
   return sizing::build<3>({pts, 6, faces, src, sides, "two triangles"}, s);
 }
 
+/// Grade 1.3, global size 0.05: the spec of the field tests on small triangles.
+sizing::spec<3> spec_13() {
+  sizing::spec<3> s;
+  s.grade = 1.3;
+  s.global = 0.05;
+  return s;
+}
+
+/// Two parallel triangles 0.001 apart (a thin layer's faces), for two_triangles.
+const std::vector<point3> parallel_triangles{{0, 0, 0}, {0.05, 0, 0}, {0.01, 0.04, 0}, {0, 0, 0.001}, {0.05, 0, 0.001}, {0.01, 0.04, 0.001}};
+
 }  // namespace
 
 // A 1e-3 film on a substrate 10 times as thick and 20 times as wide, and the same film between
@@ -444,10 +455,8 @@ BOOST_AUTO_TEST_CASE(field_is_lipschitz) {
 // 364,353 points with --grade 1.3 where the axis-aligned one took 255,732 (with this change
 // alone 249,169 and 255,577; docs/benchmarks.md, forty-third part).
 BOOST_AUTO_TEST_CASE(field_is_the_same_when_turned) {
-  sizing::spec<3> s;
-  s.grade = 1.3;
-  s.global = 0.05;
-  const std::vector<point3> pts{{0, 0, 0}, {0.05, 0, 0}, {0.01, 0.04, 0}, {0, 0, 0.001}, {0.05, 0, 0.001}, {0.01, 0.04, 0.001}};
+  const auto s = spec_13();
+  const std::vector<point3>& pts = parallel_triangles;
   std::vector<point3> turned;
   for (const auto& q : pts) turned.push_back(gsse::test::turn(q));
   const auto f = two_triangles(pts, {{1, 0}, {0, 1}}, s), g = two_triangles(turned, {{1, 0}, {0, 1}}, s);
@@ -465,6 +474,69 @@ BOOST_AUTO_TEST_CASE(field_is_the_same_when_turned) {
   }
   BOOST_TEST(graded > 1000u);  // most points are where the pieces' terms bind
   BOOST_TEST(worst <= 1e-9, "h differs by " << worst << " (relative) when turned");
+}
+
+// The field's search in frames: pieces slanted the same way (a turned wall, its parallel
+// neighbour) are searched in a tree of boxes taken in their plane's frame, the rest in the model's
+// axes. The value is what visiting every piece gives, bit for bit (size_field::exhaustive), in 3D
+// (three pairs of parallel triangles 0.001 apart: one axis-aligned, two turned two ways) and in
+// 2D (two pairs of parallel segments, one turned), at points near the pieces and far, with and
+// without a cap.
+BOOST_AUTO_TEST_CASE(field_search_in_frames_is_exhaustive) {
+  const auto s = spec_13();
+  const std::vector<point3>& pair = parallel_triangles;
+  std::vector<point3> pts;
+  for (const auto& q : pair) pts.push_back(q);
+  for (const auto& q : pair) pts.push_back(gsse::test::turn(q + point3{0.07, 0, 0}));
+  for (const auto& q : pair) pts.push_back(gsse::test::turn(gsse::test::turn(q + point3{0, 0.07, 0.02})));
+  std::vector<std::array<vertex_id, 3>> faces;
+  std::vector<std::uint32_t> src;
+  std::vector<std::array<int, 2>> sides;
+  for (vertex_id k = 0; k < 6; ++k) {
+    faces.push_back({3 * k, 3 * k + 1, 3 * k + 2});
+    src.push_back(k);
+    sides.push_back(k % 2 == 0 ? std::array<int, 2>{1, 0} : std::array<int, 2>{0, 1});
+  }
+  const auto f = sizing::build<3>({pts, pts.size(), faces, src, sides, "three pairs"}, s);
+  BOOST_TEST_REQUIRE(f.sources() > 300u);
+  BOOST_TEST(f.turned_groups() == 2u);
+  std::mt19937 r(11);
+  std::uniform_real_distribution<double> u(-0.05, 0.15), c(0.0, 0.06);
+  std::size_t graded = 0, differ = 0;
+  for (int i = 0; i < 3000; ++i) {
+    point3 x{u(r), u(r), u(r)};
+    if (i % 2 == 0) x = pts[static_cast<std::size_t>(i) % pts.size()] + 0.02 * point3{u(r), u(r), u(r)};  // near a piece
+    const double all = f.exhaustive(x), cap = c(r);
+    graded += all < s.global;
+    differ += f(x) != all;
+    differ += f.capped(x, cap) != std::min(cap, all);
+  }
+  BOOST_TEST(graded > 1500u);
+  BOOST_TEST(differ == 0u);
+  // 2D: two pairs of segments 0.001 apart, one along the x axis, one turned by 0.3 radians
+  sizing::spec<2> s2;
+  s2.grade = 1.3;
+  s2.global = 0.05;
+  const double a = 0.3;
+  auto turn2 = [&](const point2& q) { return point2{std::cos(a) * q[0] - std::sin(a) * q[1] + 0.1, std::sin(a) * q[0] + std::cos(a) * q[1]}; };
+  const std::vector<point2> seg{{0, 0}, {0.05, 0}, {0, 0.001}, {0.05, 0.001}};
+  std::vector<point2> p2(seg);
+  for (const auto& q : seg) p2.push_back(turn2(q));
+  const std::vector<std::array<vertex_id, 2>> e2{{0, 1}, {2, 3}, {4, 5}, {6, 7}};
+  const std::vector<std::uint32_t> src2{0, 1, 2, 3};
+  const std::vector<std::array<int, 2>> sides2{{1, 0}, {0, 1}, {1, 0}, {0, 1}};
+  const auto f2 = sizing::build<2>({p2, p2.size(), e2, src2, sides2, "two pairs"}, s2);
+  BOOST_TEST_REQUIRE(f2.sources() > 100u);
+  BOOST_TEST(f2.turned_groups() == 1u);
+  std::size_t differ2 = 0;
+  for (int i = 0; i < 3000; ++i) {
+    point2 x{u(r), u(r)};
+    if (i % 2 == 0) x = p2[static_cast<std::size_t>(i) % p2.size()] + 0.02 * point2{u(r), u(r)};
+    const double all = f2.exhaustive(x), cap = c(r);
+    differ2 += f2(x) != all;
+    differ2 += f2.capped(x, cap) != std::min(cap, all);
+  }
+  BOOST_TEST(differ2 == 0u);
 }
 
 // Features far below the model's size (two triangles 1e-8 apart, 0.05 wide): the field would need

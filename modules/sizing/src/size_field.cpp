@@ -78,6 +78,105 @@ double size_field<D>::background_value(const point<D>& x) const {
 }
 
 template <std::size_t D>
+void size_field<D>::group_faces() {
+  // each piece's unit normal, its sign fixed (first clear component positive); pieces whose
+  // normal is an axis (or that are degenerate) go in the model's axes. A direction held by at
+  // least `least` pieces gets a group of its own (the 15 most held), keyed by the normal rounded
+  // to 1e-6: the pieces of one facet, and of facets parallel to it, share it up to rounding
+  constexpr std::size_t least = 64, most_groups = 15;
+  const std::size_t n = face_pieces_.size();
+  std::vector<point<D>> normal(n);
+  using key = std::array<long long, D>;
+  std::map<key, std::size_t> held;
+  std::vector<key> key_of(n);
+  std::vector<char> slanted(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& s = face_pieces_[i];
+    point<D> m{};
+    if constexpr (D == 3)
+      m = cross(s[1] - s[0], s[2] - s[0]);
+    else
+      m = point<D>{s[0][1] - s[1][1], s[1][0] - s[0][0]};
+    const double len = std::sqrt(dot(m, m));
+    if (!(len > 0) || !std::isfinite(len)) continue;
+    m = (1.0 / len) * m;
+    for (std::size_t k = 0; k < D; ++k)
+      if (std::abs(m[k]) > 1e-9) {
+        if (m[k] < 0) m = -1.0 * m;
+        break;
+      }
+    double largest = 0;
+    for (std::size_t k = 0; k < D; ++k) largest = std::max(largest, std::abs(m[k]));
+    if (largest >= 1 - 1e-9) continue;
+    normal[i] = m;
+    slanted[i] = 1;
+    for (std::size_t k = 0; k < D; ++k) key_of[i][k] = std::llround(m[k] * 1e6);
+    ++held[key_of[i]];
+  }
+  std::vector<std::pair<std::size_t, key>> ranked;
+  for (const auto& [k, c] : held)
+    if (c >= least) ranked.push_back({c, k});
+  std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
+  if (ranked.size() > most_groups) ranked.resize(most_groups);
+  std::map<key, std::size_t> group_of;
+  groups_.assign(ranked.size() + 1, face_group{});  // the last: the model's axes
+  for (std::size_t g = 0; g < ranked.size(); ++g) group_of[ranked[g].second] = g;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t g = ranked.size();
+    if (slanted[i])
+      if (const auto it = group_of.find(key_of[i]); it != group_of.end()) g = it->second;
+    groups_[g].items.push_back(static_cast<std::uint32_t>(i));
+  }
+  // the frames: the normal of the group's first piece last, the others across it
+  double scale = 0;
+  for (const auto& s : face_pieces_)
+    for (const auto& q : s)
+      for (std::size_t k = 0; k < D; ++k) scale = std::max(scale, std::abs(q[k]));
+  for (std::size_t g = 0; g < ranked.size(); ++g) {
+    auto& G = groups_[g];
+    const point<D> m = normal[G.items[0]];
+    G.turned = true;
+    if constexpr (D == 3) {
+      std::size_t low = 0;
+      for (std::size_t k = 1; k < 3; ++k)
+        if (std::abs(m[k]) < std::abs(m[low])) low = k;
+      point<D> axis{};
+      axis[low] = 1;
+      point<D> e1 = cross(m, axis);
+      e1 = (1.0 / std::sqrt(dot(e1, e1))) * e1;
+      G.axes = {e1, cross(m, e1), m};
+    } else {
+      G.axes = {point<D>{-m[1], m[0]}, m};
+    }
+  }
+  for (auto& G : groups_) {
+    std::vector<aabb<D>> boxes;
+    std::vector<double> values;
+    boxes.reserve(G.items.size()), values.reserve(G.items.size());
+    // a frame's coordinates are dot products with rows of length 1 up to rounding: the boxes
+    // padded by far more (1e-12 of the coordinates' magnitude), so that no box distance exceeds
+    // a piece's true distance
+    const double pad = G.turned ? 1e-12 * scale + 1e-300 : 0.0;
+    for (std::uint32_t i : G.items) {
+      aabb<D> bx = aabb<D>::empty();
+      for (const auto& q : face_pieces_[i]) {
+        G.box.add(q);
+        point<D> y = q;
+        if (G.turned)
+          for (std::size_t k = 0; k < D; ++k) y[k] = dot(G.axes[k], q);
+        bx.add(y);
+      }
+      for (std::size_t k = 0; k < D; ++k) bx.lo[k] -= pad, bx.hi[k] += pad;
+      boxes.push_back(bx);
+      values.push_back(face_values_[i]);
+      G.min_value = std::min(G.min_value, face_values_[i]);
+    }
+    G.tree = box_tree<D>(std::move(boxes), std::move(values));
+  }
+  std::erase_if(groups_, [](const face_group& G) { return G.items.empty(); });
+}
+
+template <std::size_t D>
 double size_field<D>::operator()(const point<D>& x) const {
   return capped(x, unbounded);
 }
@@ -89,17 +188,40 @@ double size_field<D>::capped(const point<D>& x, double cap) const {
     aabb<D> box{b.lo, b.hi};
     v = std::min(v, b.size + (b.grade > 0 ? b.grade - 1 : slope_) * std::sqrt(box.distance2(x)));
   }
-  // each thread's last winning piece of this field's face tree starts its next search (queries
-  // come in places near each other: a placement's cubes, a facet's faces); the value found does not
-  // depend on it
+  // each thread's last winning piece of this field starts its next search (queries come in places
+  // near each other: a placement's cubes, a facet's faces); the value found does not depend on it
   thread_local struct {
-    const void* tree = nullptr;
+    const void* field = nullptr;
     std::uint32_t item = 0;
   } last;
-  if (last.tree != &faces_) last = {&faces_, ~std::uint32_t{0}};
-  v = faces_.graded_min(x, slope_, v, [&](std::uint32_t i, double) { return face_distance2<D>(face_pieces_[i], x); }, &last.item);
+  if (last.field != this) last = {this, ~std::uint32_t{0}};
+  if (last.item < face_pieces_.size())
+    v = std::min(v, face_values_[last.item] + slope_ * std::sqrt(face_distance2<D>(face_pieces_[last.item], x)));
+  for (const auto& g : groups_) {
+    if (g.min_value + slope_ * std::sqrt(g.box.distance2(x)) >= v) continue;
+    point<D> y = x;
+    if (g.turned)
+      for (std::size_t k = 0; k < D; ++k) y[k] = dot(g.axes[k], x);
+    std::uint32_t won = ~std::uint32_t{0};
+    const double r = g.tree.graded_min(y, slope_, v, [&](std::uint32_t i, double) { return face_distance2<D>(face_pieces_[g.items[i]], x); }, &won);
+    if (r < v && won < g.items.size()) v = r, last.item = g.items[won];
+  }
   for (const auto& L : layers_)
     v = L.tree.graded_min(x, L.slope, v, [&](std::uint32_t i, double) { return face_distance2<D>(L.pieces[i], x); });
+  if (background_) v = std::min(v, background_value(x));
+  return v;
+}
+
+template <std::size_t D>
+double size_field<D>::exhaustive(const point<D>& x) const {
+  double v = global_;
+  for (const auto& b : boxes_) {
+    aabb<D> box{b.lo, b.hi};
+    v = std::min(v, b.size + (b.grade > 0 ? b.grade - 1 : slope_) * std::sqrt(box.distance2(x)));
+  }
+  for (std::size_t i = 0; i < face_pieces_.size(); ++i) v = std::min(v, face_values_[i] + slope_ * std::sqrt(face_distance2<D>(face_pieces_[i], x)));
+  for (const auto& L : layers_)
+    for (std::size_t i = 0; i < L.pieces.size(); ++i) v = std::min(v, L.tree.value(static_cast<std::uint32_t>(i)) + L.slope * std::sqrt(face_distance2<D>(L.pieces[i], x)));
   if (background_) v = std::min(v, background_value(x));
   return v;
 }
@@ -481,18 +603,13 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
                    closest_found);
   }
   if (!keep) return f;
-  std::vector<aabb<D>> boxes;
-  std::vector<double> values;
   for (const auto& v : pieces)
     for (const auto& [piece, value] : v) {
-      aabb<D> bx = aabb<D>::empty();
-      for (const auto& q : piece) bx.add(q);
-      boxes.push_back(bx);
-      values.push_back(value);
+      f.face_values_.push_back(value);
       f.face_pieces_.push_back(piece);
       f.minimum_ = std::min(f.minimum_, value);
     }
-  f.faces_ = box_tree<D>(std::move(boxes), std::move(values));
+  f.group_faces();
   // interface layers with a growth rate of their own: their faces, cut in pieces no larger than
   // the layer's size, in one tree per rate
   struct layer_parts {
@@ -534,7 +651,7 @@ size_field<D> field_builder<D>::run(const boundary_view<D>& b, const spec<D>& s,
   for (auto& [slope, parts] : by_slope)
     if (!parts.boxes.empty())
       f.layers_.push_back({slope, box_tree<D>(std::move(parts.boxes), std::move(parts.values)), std::move(parts.pieces)});
-  f.uniform_ = f.faces_.empty() && f.layers_.empty() && !f.background_;
+  f.uniform_ = f.face_pieces_.empty() && f.layers_.empty() && !f.background_;
   for (const auto& bx : s.boxes) {
     if (!(bx.size > 0)) throw std::invalid_argument("a refinement box's size must be positive");
     f.minimum_ = std::min(f.minimum_, bx.size);
@@ -559,6 +676,8 @@ template double size_field<2>::operator()(const point2&) const;
 template double size_field<3>::operator()(const point3&) const;
 template double size_field<2>::operator()(const point2&, int) const;
 template double size_field<3>::operator()(const point3&, int) const;
+template double size_field<2>::exhaustive(const point2&) const;
+template double size_field<3>::exhaustive(const point3&) const;
 template double size_field<2>::capped(const point2&, double) const;
 template double size_field<3>::capped(const point3&, double) const;
 template double size_field<2>::capped(const point2&, int, double) const;

@@ -21,6 +21,7 @@
 // interpolated linearly in its cells) is applied as given, not graded.
 //
 // Sizing only: the values are doubles that place points; they decide no topology.
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <cstddef>
@@ -114,9 +115,17 @@ class size_field {
     const auto it = segment_size_.find(number);
     return it == segment_size_.end() ? unbounded : it->second;
   }
+  /// h(x) by visiting every term, the pieces one by one (no tree): what operator() must give, bit
+  /// for bit (tests).
+  double exhaustive(const point<D>& x) const;
+  /// How many groups of face pieces the field searches in a frame of their own (pieces whose
+  /// plane is slanted the same way; the rest are searched in the model's axes).
+  std::size_t turned_groups() const {
+    return static_cast<std::size_t>(std::count_if(groups_.begin(), groups_.end(), [](const face_group& g) { return g.turned; }));
+  }
   /// Sources of the graded minimum (boundary face pieces), for statistics and tests.
   std::size_t sources() const {
-    std::size_t n = faces_.size();
+    std::size_t n = face_pieces_.size();
     for (const auto& L : layers_) n += L.tree.size();
     return n;
   }
@@ -126,11 +135,24 @@ class size_field {
   friend struct field_builder;
   double global_ = unbounded, slope_ = 0.3, max_slope_ = 0.3, minimum_ = unbounded;
   bool uniform_ = true;
-  // boundary face pieces with their values: the tree over their boxes, and the pieces themselves
-  // (a term's distance is to its piece, not to the piece's box: a slanted piece's box reaches up to
-  // its radius off it, and the field came out smaller on a structure merely turned off the axes)
-  box_tree<D> faces_;
+  // boundary face pieces with their values (a term's distance is to its piece, not to the piece's
+  // box: a slanted piece's box reaches up to its radius off it, and the field came out smaller on a
+  // structure merely turned off the axes), and trees over their boxes in groups: pieces whose plane
+  // is slanted the same way (a turned box's walls) in a tree of their own whose boxes are taken in
+  // that plane's frame, where they are as tight as an axis-aligned wall's; the rest in one tree in
+  // the model's axes. The boxes only prune: the distances asked are the pieces' own
+  struct face_group {
+    std::array<point<D>, D> axes{};  // orthonormal rows, the plane's normal last (when turned)
+    bool turned = false;
+    aabb<D> box = aabb<D>::empty();  // the group's pieces' box, in the model's axes
+    double min_value = unbounded;
+    box_tree<D> tree;                   // the pieces' boxes in the frame, padded over its rounding
+    std::vector<std::uint32_t> items;  // tree item i is face_pieces_[items[i]]
+  };
+  std::vector<face_group> groups_;
   std::vector<std::array<point<D>, D>> face_pieces_;
+  std::vector<double> face_values_;
+  void group_faces();
   // interface layers with a growth rate of their own, by slope
   struct layer {
     double slope;
