@@ -1,4 +1,5 @@
 #include "gsse/conformer/conformer.hpp"
+#include "gsse/geometry/plane_axes.hpp"
 #include "gsse/sizing/place_points.hpp"
 #include "gsse/sizing/distance.hpp"
 
@@ -1029,14 +1030,8 @@ class state3 : public state<3> {
     S.unit = (1.0 / std::sqrt(dot(R.normal, R.normal))) * R.normal;
     for (vertex_id v : S.corners) S.centre = S.centre + out_.points[v];
     S.centre = (1.0 / static_cast<double>(S.corners.size())) * S.centre;
-    std::size_t least = 0;  // the axis most across the plane gives a well-conditioned e1
-    for (std::size_t k = 1; k < 3; ++k)
-      if (std::abs(S.unit[k]) < std::abs(S.unit[least])) least = k;
-    point3 axis{};
-    axis[least] = 1;
-    S.e1 = cross(S.unit, axis);
-    S.e1 = (1.0 / std::sqrt(dot(S.e1, S.e1))) * S.e1;
-    S.e2 = cross(S.unit, S.e1);
+    const auto across = geometry::plane_axes(S.unit);
+    S.e1 = across[0], S.e2 = across[1];
   }
 
   /// "FILE: facet N" of the input facet that names facet f (the first of a merged group).

@@ -12,6 +12,7 @@
 #include <string>
 #include <utility>
 
+#include "gsse/geometry/plane_axes.hpp"
 #include "gsse/sizing/distance.hpp"
 #include "gsse/traversal/for_each.hpp"
 
@@ -137,14 +138,8 @@ void size_field<D>::group_faces() {
     const point<D> m = normal[G.items[0]];
     G.turned = true;
     if constexpr (D == 3) {
-      std::size_t low = 0;
-      for (std::size_t k = 1; k < 3; ++k)
-        if (std::abs(m[k]) < std::abs(m[low])) low = k;
-      point<D> axis{};
-      axis[low] = 1;
-      point<D> e1 = cross(m, axis);
-      e1 = (1.0 / std::sqrt(dot(e1, e1))) * e1;
-      G.axes = {e1, cross(m, e1), m};
+      const auto across = geometry::plane_axes(m);
+      G.axes = {across[0], across[1], m};
     } else {
       G.axes = {point<D>{-m[1], m[0]}, m};
     }
