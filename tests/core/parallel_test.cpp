@@ -57,7 +57,21 @@ BOOST_AUTO_TEST_CASE(finalize_is_the_same_for_any_thread_count) {
   for (cell_id c = 0; c < g.cells.size(); ++c)
     for (int i = 0; i < 4; ++i) {
       BOOST_TEST_REQUIRE(one.neighbour(c, i) == many.neighbour(c, i));
-      inner += many.neighbour(c, i) != no_cell;
+      const cell_id n = many.neighbour(c, i);
+      inner += n != no_cell;
+      if (n == no_cell) continue;
+      // neighbour i is across the facet opposite vertex i: it holds that facet's vertices and not
+      // vertex i, and names c back across the same facet
+      const auto& a = g.cells[c];
+      const auto& b = g.cells[n];
+      for (int j = 0; j < 4; ++j) BOOST_TEST_REQUIRE(std::ranges::count(b, a[static_cast<std::size_t>(j)]) == (j == i ? 0 : 1));
+      int back = 0;
+      for (int j = 0; j < 4; ++j)
+        if (many.neighbour(n, j) == c) {
+          ++back;
+          BOOST_TEST_REQUIRE(std::ranges::count(a, b[static_cast<std::size_t>(j)]) == 0);
+        }
+      BOOST_TEST_REQUIRE(back == 1);
     }
   BOOST_TEST(inner == 4 * g.cells.size() - 2 * 6 * 20 * 20);  // every facet but the 4800 on the cube's faces
 }

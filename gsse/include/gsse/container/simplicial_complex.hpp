@@ -88,8 +88,8 @@ class simplicial_complex {
     for_each(execution::par(threads), starts, [&](std::size_t a) { match_facets(a, std::min(nv, a + range)); });
   }
   void match_facets(std::size_t v0, std::size_t v1) {
-    // the facet's other vertices, sorted, as one integer (D <= 3: at most two 32-bit ids), so
-    // that the sort compares words; the order of a facet's two cells does not matter
+    // the facet's other vertices, sorted, as one integer (D <= 3: at most two 32-bit ids): one
+    // word to hash and compare; the order of a facet's two cells does not matter
     static_assert(D >= 1 && D <= 3 && sizeof(vertex_id) <= 4);
     struct entry {
       std::uint64_t rest;
@@ -97,6 +97,7 @@ class simplicial_complex {
       int i;
     };
     std::vector<entry> around;
+    std::vector<std::int64_t> table;  // entry per slot, -1: empty
     for (std::size_t v = v0; v < v1; ++v) {
       around.clear();
       for (std::size_t k = vstart_[v]; k < vstart_[v + 1]; ++k) {
@@ -125,27 +126,30 @@ class simplicial_complex {
           around.push_back({key, c, static_cast<int>(i)});
         }
       }
-      // usually few entries (a vertex's star): insertion sort, else (a fan of thousands) std::sort
-      if (around.size() > 64) {
-        std::sort(around.begin(), around.end(), [](const entry& a, const entry& b) { return a.rest < b.rest; });
-      } else {
-        for (std::size_t a = 1; a < around.size(); ++a) {
-          const entry e = around[a];
-          std::size_t b = a;
-          for (; b > 0 && around[b - 1].rest > e.rest; --b) around[b] = around[b - 1];
-          around[b] = e;
+      // the two entries of each facet paired through a small open-addressing table keyed by the
+      // other vertices (sorting them was half of finalize(): a star's 20-40 entries by insertion)
+      std::size_t cap = 16;
+      int bits = 4;
+      while (cap < 2 * around.size()) cap *= 2, ++bits;
+      if (table.size() < cap) table.resize(cap);
+      std::fill_n(table.begin(), cap, -1);
+      for (std::size_t k = 0; k < around.size(); ++k) {
+        const std::uint64_t key = around[k].rest;
+        std::size_t at = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> (64 - bits));
+        for (;; at = (at + 1) & (cap - 1)) {
+          const std::int64_t j = table[at];
+          if (j < 0) {
+            table[at] = static_cast<std::int64_t>(k);
+            break;
+          }
+          const auto& e = around[static_cast<std::size_t>(j)];
+          if (e.rest != key) continue;
+          if (nbrs_[e.c][static_cast<std::size_t>(e.i)] != no_cell)  // paired already: a third cell
+            throw std::runtime_error("gsse: a facet is shared by more than two cells");
+          nbrs_[around[k].c][static_cast<std::size_t>(around[k].i)] = e.c;
+          nbrs_[e.c][static_cast<std::size_t>(e.i)] = around[k].c;
+          break;
         }
-      }
-      for (std::size_t k = 0; k + 1 < around.size();) {
-        if (around[k].rest != around[k + 1].rest) {
-          ++k;
-          continue;
-        }
-        if (k + 2 < around.size() && around[k + 2].rest == around[k].rest)
-          throw std::runtime_error("gsse: a facet is shared by more than two cells");
-        nbrs_[around[k].c][static_cast<std::size_t>(around[k].i)] = around[k + 1].c;
-        nbrs_[around[k + 1].c][static_cast<std::size_t>(around[k + 1].i)] = around[k].c;
-        k += 2;
       }
     }
   }
