@@ -86,9 +86,9 @@ void size_field<D>::group_faces() {
   // to 1e-6: the pieces of one facet, and of facets parallel to it, share it up to rounding
   constexpr std::size_t least = 64, most_groups = 15;
   const std::size_t n = face_pieces_.size();
-  std::vector<point<D>> normal(n);
   using key = std::array<long long, D>;
   std::map<key, std::size_t> held;
+  std::map<key, point<D>> normal;  // per direction: its first piece's normal (the group's frame)
   std::vector<key> key_of(n);
   std::vector<char> slanted(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -109,10 +109,10 @@ void size_field<D>::group_faces() {
     double largest = 0;
     for (std::size_t k = 0; k < D; ++k) largest = std::max(largest, std::abs(m[k]));
     if (largest >= 1 - 1e-9) continue;
-    normal[i] = m;
     slanted[i] = 1;
     for (std::size_t k = 0; k < D; ++k) key_of[i][k] = std::llround(m[k] * 1e6);
     ++held[key_of[i]];
+    normal.emplace(key_of[i], m);
   }
   std::vector<std::pair<std::size_t, key>> ranked;
   for (const auto& [k, c] : held)
@@ -135,7 +135,7 @@ void size_field<D>::group_faces() {
       for (std::size_t k = 0; k < D; ++k) scale = std::max(scale, std::abs(q[k]));
   for (std::size_t g = 0; g < ranked.size(); ++g) {
     auto& G = groups_[g];
-    const point<D> m = normal[G.items[0]];
+    const point<D> m = normal.at(ranked[g].second);
     G.turned = true;
     if constexpr (D == 3) {
       const auto across = geometry::plane_axes(m);
@@ -177,12 +177,17 @@ double size_field<D>::operator()(const point<D>& x) const {
 }
 
 template <std::size_t D>
-double size_field<D>::capped(const point<D>& x, double cap) const {
-  double v = std::min(global_, cap);
+double size_field<D>::box_terms(const point<D>& x, double v) const {
   for (const auto& b : boxes_) {
     aabb<D> box{b.lo, b.hi};
     v = std::min(v, b.size + (b.grade > 0 ? b.grade - 1 : slope_) * std::sqrt(box.distance2(x)));
   }
+  return v;
+}
+
+template <std::size_t D>
+double size_field<D>::capped(const point<D>& x, double cap) const {
+  double v = box_terms(x, std::min(global_, cap));
   // each thread's last winning piece of this field starts its next search (queries come in places
   // near each other: a placement's cubes, a facet's faces); the value found does not depend on it
   thread_local struct {
@@ -209,11 +214,7 @@ double size_field<D>::capped(const point<D>& x, double cap) const {
 
 template <std::size_t D>
 double size_field<D>::exhaustive(const point<D>& x) const {
-  double v = global_;
-  for (const auto& b : boxes_) {
-    aabb<D> box{b.lo, b.hi};
-    v = std::min(v, b.size + (b.grade > 0 ? b.grade - 1 : slope_) * std::sqrt(box.distance2(x)));
-  }
+  double v = box_terms(x, global_);
   for (std::size_t i = 0; i < face_pieces_.size(); ++i) v = std::min(v, face_values_[i] + slope_ * std::sqrt(face_distance2<D>(face_pieces_[i], x)));
   for (const auto& L : layers_)
     for (std::size_t i = 0; i < L.pieces.size(); ++i) v = std::min(v, L.tree.value(static_cast<std::uint32_t>(i)) + L.slope * std::sqrt(face_distance2<D>(L.pieces[i], x)));

@@ -153,6 +153,8 @@ class size_field {
   std::vector<std::array<point<D>, D>> face_pieces_;
   std::vector<double> face_values_;
   void group_faces();
+  // v lowered by the refinement boxes' terms at x (capped and exhaustive share them)
+  double box_terms(const point<D>& x, double v) const;
   // interface layers with a growth rate of their own, by slope
   struct layer {
     double slope;
