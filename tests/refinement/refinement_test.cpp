@@ -550,6 +550,46 @@ BOOST_AUTO_TEST_CASE(session_refines_round_after_round) {
   }
 }
 
+// conformer::session::next with free points and no split, not going on from its own state (the
+// size rounds' first round): points that encroach nothing give resume()'s boundary, every field
+// of it, without the rebuild; a point that encroaches a subfacet or a subsegment is conformed
+// (the boundary gains its splits), as resume() does it. On the rotated stack (slanted facets).
+BOOST_AUTO_TEST_CASE(session_appends_free_points_that_encroach_nothing) {
+  const auto p = stack(1, {0, 0.5, 1}, true);
+  conformer::options co;
+  co.size = 0.3;
+  const auto b = conformer::conform(p, {}, co);
+  BOOST_REQUIRE(conformer::encroached(b).empty());
+  auto same = [](const conformer::boundary<3>& x, const conformer::boundary<3>& y) {
+    bool homes = x.homes.size() == y.homes.size();
+    for (std::size_t v = 0; homes && v < x.homes.size(); ++v) homes = x.homes[v].kind == y.homes[v].kind && x.homes[v].id == y.homes[v].id;
+    return homes && x.points == y.points && x.faces == y.faces && x.face_source == y.face_source && x.plc_points == y.plc_points &&
+           x.volume_points == y.volume_points && x.steiner == y.steiner && x.rounds == y.rounds && x.protect == y.protect &&
+           x.meshed_sides == y.meshed_sides;
+  };
+  // mid-layer: 0.25 from the layers' planes, farther than any subfacet's circumradius (at most
+  // 0.3 / sqrt 3) and any subsegment's half length
+  const std::vector<point3> free{turn(point3{0.5, 0.5, 0.25}), turn(point3{0.45, 0.4, 0.75})};
+  {
+    conformer::session<3> s(p, co);
+    const auto c = s.next(b, free, {});
+    BOOST_TEST(c.points.size() == b.points.size() + free.size());
+    BOOST_TEST(same(c, conformer::resume(p, b, free, {}, co)), "a free point that encroaches nothing: not resume()'s boundary");
+    // and the next call, handed that boundary, resumes and refines it
+    const std::vector<point3> more{turn(point3{0.3, 0.6, 0.25})};
+    const auto d = s.next(c, more, {0});
+    refines(c, d, more, {0});
+  }
+  // near a layer's plane (a subfacet), and near the stack's vertical edge (a subsegment)
+  for (const point3& x : {point3{0.5, 0.5, 0.52}, point3{0.01, 0.01, 0.12}}) {
+    conformer::session<3> s(p, co);
+    const std::vector<point3> near{turn(point3{0.5, 0.5, 0.25}), turn(x)};
+    const auto c = s.next(b, near, {});
+    refines(b, c, near, {});
+    BOOST_TEST(same(c, conformer::resume(p, b, near, {}, co)), "an encroaching free point: not resume()'s boundary");
+  }
+}
+
 namespace {
 
 /// Every region's cells as a sorted list of sorted vertex tuples.
