@@ -992,6 +992,59 @@ BOOST_AUTO_TEST_CASE(bench_structures_refined) {
 // again and again: 20,003 points rotated against 4,155 axis-aligned. With the wall images sheared
 // (conformer: wall_shear) 5,674; the rest comes from the layer's rims, whose edge points are
 // images of each other unsheared (modules/refinement/README.md).
+BOOST_AUTO_TEST_CASE(labels_carry_over_from_another_conform_of_the_same_plc) {
+  // the pipeline labels the sized boundary from the coarse model's (an unsized conform of the
+  // same PLC, another conformer run) and the conformer reads its facets' meshed sides from it:
+  // label_refined must give label()'s sides, also where a source's faces are oriented the other
+  // way round in `before` (the sides swap), on axis-aligned and turned (slanted) facets
+  auto reversed = [](auto b, auto l) {  // every face turned over, its sides swapped
+    for (auto& F : b.faces) std::swap(F[0], F[1]);
+    for (auto& s : l.side) std::swap(s[0], s[1]);
+    return std::pair(b, l);
+  };
+  auto check = [&](const auto& p, double size, const auto& volume) {
+    conformer::options unsized;
+    const auto coarse = conformer::conform(p, {}, unsized);
+    const auto lc = conformer::label(coarse, p, 1);
+    conformer::options co;
+    co.size = size;
+    const auto b = conformer::conform(p, volume, co);
+    const auto full = conformer::label(b, p, 2);
+    BOOST_TEST((conformer::label_refined(b, p, coarse, lc, 2).side == full.side), p.source << ": carried sides differ");
+    const auto [rb, rl] = reversed(coarse, lc);
+    BOOST_TEST((conformer::label_refined(b, p, rb, rl, 2).side == full.side), p.source << ": sides of reversed faces not swapped");
+    // half the sources reversed: each source is matched on its own
+    auto half = coarse;
+    auto hl = lc;
+    for (std::size_t f = 0; f < half.faces.size(); ++f)
+      if (half.face_source[f] % 2) std::swap(half.faces[f][0], half.faces[f][1]), std::swap(hl.side[f][0], hl.side[f][1]);
+    BOOST_TEST((conformer::label_refined(b, p, half, hl, 2).side == full.side), p.source << ": a reversed source's sides not swapped");
+  };
+  for (bool rotated : {false, true}) {
+    const auto p = stack(1, {0, 0.3, 0.35, 1}, rotated);
+    std::vector<point3> volume;
+    for (int i = 1; i < 5; ++i)
+      for (int j = 1; j < 5; ++j) {
+        const point3 q{0.2 * i, 0.2 * j, 0.6};
+        volume.push_back(rotated ? turn(q) : q);
+      }
+    check(p, 0.15, volume);
+    // the conformer reading the facets' meshed sides from the coarse model's labels (slanted
+    // facets: its flat-pair check asks them) gives the boundary it gives without them
+    conformer::options co;
+    co.size = 0.15;
+    const auto alone = conformer::conform(p, volume, co);
+    conformer::options unsized;
+    const auto coarse = conformer::conform(p, {}, unsized);
+    const auto lc = conformer::label(coarse, p, 1);
+    co.sides_from = &coarse;
+    co.sides_labels = &lc;
+    const auto read = conformer::conform(p, volume, co);
+    BOOST_TEST((read.faces == alone.faces && read.points == alone.points), p.source << ": the meshed sides read from the coarse labels changed the boundary");
+  }
+  check(device2d(), 0.2, std::vector<point2>{{1, 0.5}, {3, 0.5}});
+}
+
 BOOST_AUTO_TEST_CASE(thin_layer_rotated_like_axis_aligned) {
   std::size_t points[2] = {0, 0};
   for (bool rotated : {false, true}) {

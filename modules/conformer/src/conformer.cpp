@@ -1583,7 +1583,8 @@ class state3 : public state<3> {
       }
     labelling l;
     try {
-      l = label(b, plc_, opt_.threads);
+      l = opt_.sides_from && opt_.sides_labels ? label_refined(b, plc_, *opt_.sides_from, *opt_.sides_labels, opt_.threads)
+                                               : label(b, plc_, opt_.threads);
     } catch (const conform_error&) {
       // an open boundary, a misplaced region point...: the labelling stage will report it and
       // nothing gets meshed; no side counts as meshed meanwhile (checking flat pairs on every

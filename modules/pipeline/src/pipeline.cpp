@@ -427,9 +427,13 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   bool feature_size_fits = false;  // the local feature size was built within its budget
   // a region's maximum volume (TetGen's region attribute) is a size constraint of its own
   const bool volumes = std::any_of(p.regions.begin(), p.regions.end(), [](const auto& x) { return x.max_volume > 0; });
+  // the coarse model's boundary and labels, kept (its mesh and locator are not) where one was
+  // built: the sized boundary is labelled from them (label_refined: the same PLC's facets, each
+  // with the sides it had), and the conformer reads the facets' meshed sides from them
+  std::optional<std::pair<conformer::boundary<D>, conformer::labelling>> coarse;
   if ((o.graded || volumes) && !creating) {
     // the size field from the unsized conformed boundary, then the points it asks for
-    const coarse_model<D> m(p, co);
+    coarse_model<D> m(p, co);
     sizing::spec<D> sp = sizing_spec<D>(o);
     sp.global = o.size;
     sizing::add_region_volumes(sp, p);
@@ -463,8 +467,16 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
         co.local_size3 = [&field](const point3& x, double cap) { return field.capped(x, cap); };
       if (std::isfinite(field.slope())) co.local_slope = field.slope();
     }
+    coarse.emplace(std::move(m.b), std::move(m.l));
   } else {
-    volume = size_points<D>{}(p, o.size, cloud, r.dropped_points, co, !creating && !refined_interior);
+    // size_points' work, with the coarse model kept
+    const bool lattice = !creating && !refined_interior;
+    r.dropped_points = 0;
+    if ((o.size > 0 && lattice) || !cloud.empty()) {
+      coarse_model<D> m(p, co);
+      volume = lattice_points(m, o.size, cloud, r.dropped_points, o.threads, lattice);
+      coarse.emplace(std::move(m.b), std::move(m.l));
+    }
     r.min_size = o.size;
     size_alone = !o.quality && o.size_rounds && !creating && o.size > 0;
   }
@@ -477,10 +489,12 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   std::optional<conformer::session<D>> session;
   // (not for the size rounds: they are one or two, often none, and the kept state is the size of
   // the boundary, held through the first mesh; their first round, if any, resumes instead)
+  if constexpr (D == 3)
+    if (coarse) co.sides_from = &coarse->first, co.sides_labels = &coarse->second;
   auto b = o.quality ? session.emplace(p, co).start(volume) : conform<D>{}(p, volume, co);
   r.steiner = b.steiner;
   lap("conform");
-  auto l = conformer::label(b, p, o.threads);
+  auto l = coarse ? conformer::label_refined(b, p, coarse->first, coarse->second, o.threads) : conformer::label(b, p, o.threads);
   lap("label");
   if (o.progress)
     o.progress("meshing " + std::to_string(l.regions.size()) + " segments (" + std::to_string(b.points.size()) + " points)");
