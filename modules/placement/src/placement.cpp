@@ -374,16 +374,6 @@ std::vector<point<D>> lattice_points(const surface<D>& b, const location::locato
         const double u = (x - lo[k]) / step - off[k] - shift;
         return std::pair<long, long>{static_cast<long>(std::ceil(u - r / step)), static_cast<long>(std::floor(u + r / step))};
       };
-      std::vector<std::vector<point<D>>> moved(static_cast<std::size_t>(slabs));
-      for_each(execution::par(threads), ids, [&](long s) {
-        auto& m = moved[static_cast<std::size_t>(s)];
-        for (std::size_t k = 0; k < per_slab; ++k) {
-          if (clear[static_cast<std::size_t>(s)][k]) continue;
-          nearest_foot<D> nf(b, lattice_point(s, k), keep);
-          visit_faces_near(nf.q, nf);
-          if (const auto q = nf.lifted(keep, lift)) m.push_back(*q);
-        }
-      });
       // whether a kept lattice point lies within gap of q
       auto near_kept = [&](const point<D>& q) {
         auto kept_near = [&](long s, std::size_t k) {
@@ -408,14 +398,28 @@ std::vector<point<D>> lattice_points(const surface<D>& b, const location::locato
         }
         return false;
       };
+      // the moved points, each with the tests that do not depend on the points kept before it (no
+      // kept lattice point within gap, clear of the boundary, in a segment) asked here, slab by
+      // slab in parallel; the choice below, in lattice order, only asks the gap to the band's
+      // points kept so far (the tests in this order left the rotated MOSFET's choice 5.2 ms of
+      // serial work, 3,675 point locations for 4,913 moved points)
+      std::vector<std::vector<point<D>>> moved(static_cast<std::size_t>(slabs));
+      for_each(execution::par(threads), ids, [&](long s) {
+        auto& m = moved[static_cast<std::size_t>(s)];
+        std::uint32_t hint = location::locator<D>::no_cell;
+        for (std::size_t k = 0; k < per_slab; ++k) {
+          if (clear[static_cast<std::size_t>(s)][k]) continue;
+          nearest_foot<D> nf(b, lattice_point(s, k), keep);
+          visit_faces_near(nf.q, nf);
+          if (const auto q = nf.lifted(keep, lift); q && !near_kept(*q) && clear_of_boundary(*q) && in_segment(*q, hint))
+            m.push_back(*q);
+        }
+      });
       hash_grid<D> added(lo, gap);
       std::vector<point<D>> band;
-      std::uint32_t hint = location::locator<D>::no_cell;
       for (const auto& m : moved)
         for (const point<D>& q : m) {
-          if (near_kept(q)) continue;
           if (!added.visit_ring(q, 1, [&](std::uint32_t x) { return squared_distance(band[x], q) >= gap * gap; })) continue;
-          if (!clear_of_boundary(q) || !in_segment(q, hint)) continue;
           added.insert(static_cast<std::uint32_t>(band.size()), q);
           band.push_back(q);
         }
