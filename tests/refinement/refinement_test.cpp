@@ -985,13 +985,6 @@ BOOST_AUTO_TEST_CASE(bench_structures_refined) {
   at_1_2("trench", 0.0442, 60, true);
 }
 
-// A thin layer (0.02 under a size of 0.1) between two slanted walls: the walls' points are each
-// other's images, so the layer is filled with prisms whose six vertices are (nearly) cospherical.
-// Rounding used to decide each prism by itself and join neighbours that split their common side
-// differently by a flat tetrahedron, which the sliver rule then refined by splitting the walls
-// again and again: 20,003 points rotated against 4,155 axis-aligned. With the wall images sheared
-// (conformer: wall_shear) 5,674; the rest comes from the layer's rims, whose edge points are
-// images of each other unsheared (modules/refinement/README.md).
 BOOST_AUTO_TEST_CASE(labels_carry_over_from_another_conform_of_the_same_plc) {
   // the pipeline labels the sized boundary from the coarse model's (an unsized conform of the
   // same PLC, another conformer run) and the conformer reads its facets' meshed sides from it:
@@ -1045,6 +1038,13 @@ BOOST_AUTO_TEST_CASE(labels_carry_over_from_another_conform_of_the_same_plc) {
   check(device2d(), 0.2, std::vector<point2>{{1, 0.5}, {3, 0.5}});
 }
 
+// A thin layer (0.02 under a size of 0.1) between two slanted walls: the walls' points are each
+// other's images, so the layer is filled with prisms whose six vertices are (nearly) cospherical.
+// Rounding used to decide each prism by itself and join neighbours that split their common side
+// differently by a flat tetrahedron, which the sliver rule then refined by splitting the walls
+// again and again: 20,003 points rotated against 4,155 axis-aligned. With the wall images sheared
+// (conformer: wall_shear) 5,674; the rest comes from the layer's rims, whose edge points are
+// images of each other unsheared (modules/refinement/README.md).
 BOOST_AUTO_TEST_CASE(thin_layer_rotated_like_axis_aligned) {
   std::size_t points[2] = {0, 0};
   for (bool rotated : {false, true}) {

@@ -530,9 +530,11 @@ labelling label_refined_impl(const boundary<D>& b, const plc<D>& p, const bounda
     const point<D> d = direction(before, f);
     if (const double n = dot(d, d); n > it->second.before_len) it->second.before_len = n, it->second.before_dir = d;
   }
+  std::vector<const entry*> of(b.faces.size());  // each face's source, looked up once
   for (std::size_t f = 0; f < b.faces.size(); ++f) {
     auto it = sides.find(b.face_source[f]);
     if (it == sides.end() || it->second.side == mixed) return label_impl(b, p, threads);
+    of[f] = &it->second;
     const point<D> d = direction(b, f);
     if (const double n = dot(d, d); n > it->second.len) it->second.len = n, it->second.dir = d;
   }
@@ -545,7 +547,7 @@ labelling label_refined_impl(const boundary<D>& b, const plc<D>& p, const bounda
   labelling out;
   out.regions = l.regions;
   out.side.resize(b.faces.size());
-  for (std::size_t f = 0; f < b.faces.size(); ++f) out.side[f] = sides.find(b.face_source[f])->second.side;
+  for (std::size_t f = 0; f < b.faces.size(); ++f) out.side[f] = of[f]->side;
   return out;
 }
 

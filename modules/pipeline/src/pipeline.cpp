@@ -259,16 +259,31 @@ std::vector<point<D>> field_points(const coarse_model<D>& m, const sizing::size_
   return out;
 }
 
+/// The coarse model's boundary and labels, where a caller keeps them past the placement.
+template <std::size_t D>
+using labelled_boundary = std::pair<conformer::boundary<D>, conformer::labelling>;
+
+/// size_points' uniform case; the coarse model's boundary and labels, if one was built, are
+/// handed to `kept` (mesh() labels the sized boundary from them).
+template <std::size_t D>
+std::vector<point<D>> uniform_points(const plc<D>& p, double h, const std::vector<point<D>>& cloud, std::size_t& dropped,
+                                     const conformer::options& co, bool lattice,
+                                     std::optional<labelled_boundary<D>>* kept = nullptr) {
+  dropped = 0;
+  if ((h <= 0 || !lattice) && cloud.empty()) return {};
+  coarse_model<D> m(p, co);
+  auto out = lattice_points(m, h, cloud, dropped, co.threads, lattice);
+  if (kept) kept->emplace(std::move(m.b), std::move(m.l));
+  return out;
+}
+
 }  // namespace
 
 template <std::size_t D>
 std::vector<point<D>> size_points<D>::operator()(const plc<D>& p, double h, const std::vector<point<D>>& cloud,
                                                  std::size_t& dropped, const conformer::options& co,
                                                  bool lattice) const {
-  dropped = 0;
-  if ((h <= 0 || !lattice) && cloud.empty()) return {};
-  const coarse_model<D> m(p, co);
-  return lattice_points(m, h, cloud, dropped, co.threads, lattice);
+  return uniform_points(p, h, cloud, dropped, co, lattice);
 }
 
 template <std::size_t D>
@@ -430,7 +445,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   // the coarse model's boundary and labels, kept (its mesh and locator are not) where one was
   // built: the sized boundary is labelled from them (label_refined: the same PLC's facets, each
   // with the sides it had), and the conformer reads the facets' meshed sides from them
-  std::optional<std::pair<conformer::boundary<D>, conformer::labelling>> coarse;
+  std::optional<labelled_boundary<D>> coarse;
   if ((o.graded || volumes) && !creating) {
     // the size field from the unsized conformed boundary, then the points it asks for
     coarse_model<D> m(p, co);
@@ -469,14 +484,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     }
     coarse.emplace(std::move(m.b), std::move(m.l));
   } else {
-    // size_points' work, with the coarse model kept
-    const bool lattice = !creating && !refined_interior;
-    r.dropped_points = 0;
-    if ((o.size > 0 && lattice) || !cloud.empty()) {
-      coarse_model<D> m(p, co);
-      volume = lattice_points(m, o.size, cloud, r.dropped_points, o.threads, lattice);
-      coarse.emplace(std::move(m.b), std::move(m.l));
-    }
+    volume = uniform_points<D>(p, o.size, cloud, r.dropped_points, co, !creating && !refined_interior, &coarse);
     r.min_size = o.size;
     size_alone = !o.quality && o.size_rounds && !creating && o.size > 0;
   }
