@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "gsse/conformer/conformer.hpp"
+#include "gsse/geometry/dihedral.hpp"
 #include "gsse/io/poly.hpp"
 #include "gsse/pipeline/pipeline.hpp"
 #include "gsse/sizing/fit.hpp"
@@ -1038,25 +1039,6 @@ BOOST_AUTO_TEST_CASE(labels_carry_over_from_another_conform_of_the_same_plc) {
   check(device2d(), 0.2, std::vector<point2>{{1, 0.5}, {3, 0.5}});
 }
 
-/// The smallest dihedral angle of a tetrahedron, in degrees (doubles; a test measure).
-double min_dihedral(const point3& a, const point3& b, const point3& c, const point3& d) {
-  auto cross = [](const point3& x, const point3& y) {
-    return point3{x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
-  };
-  const point3 q[4] = {a, b, c, d};
-  double least = 180;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j) {
-      int k = 0;
-      while (k == i || k == j) ++k;
-      int l = 6 - i - j - k;
-      const point3 e = q[j] - q[i], n1 = cross(e, q[k] - q[i]), n2 = cross(e, q[l] - q[i]);
-      const double c2 = dot(n1, n2) / std::sqrt(dot(n1, n1) * dot(n2, n2));
-      least = std::min(least, std::acos(std::clamp(c2, -1.0, 1.0)) * 180 / std::numbers::pi);
-    }
-  return least;
-}
-
 // A thin slanted layer's rims: where the layer meets the facets across its ends, the two walls'
 // edges are parallel and their points are images, as the walls' are. An edge point can move only
 // along its edge, so before it was left unsheared while the wall pairs next to it were sheared,
@@ -1077,12 +1059,11 @@ BOOST_AUTO_TEST_CASE(thin_layer_rims_sheared_like_their_walls) {
     o.verify = true;
     const auto d = pl::mesh(stack(1, {0, 0.2, 0.22, 0.4}, rotated), {}, o, r);
     BOOST_TEST(r.problems.empty());
-    const auto& p = d.points();
+    // a dihedral angle below 0.5 degrees: its cosine above cos 0.5 degrees
+    const double flat_cos = std::cos(0.5 * std::numbers::pi / 180);
     for (const auto& s : d.segments())
-      for (cell_id c = 0; c < s.num_cells(); ++c) {
-        const auto v = s.cell(c);
-        if (min_dihedral(p[v[0]], p[v[1]], p[v[2]], p[v[3]]) < 0.5) ++flat[rotated];
-      }
+      for (cell_id c = 0; c < s.num_cells(); ++c)
+        if (geometry::dihedral_cosines(d.points(), s.cell(c)).first > flat_cos) ++flat[rotated];
   }
   BOOST_TEST_MESSAGE("thin layer rims: " << flat[0] << " flat tetrahedra axis-aligned, " << flat[1] << " rotated");
   BOOST_TEST(flat[1] <= 20u, flat[1] << " flat tetrahedra on the rotated thin layer (" << flat[0] << " axis-aligned)");

@@ -2081,6 +2081,13 @@ class state3 : public state<3> {
   /// and a layer's corners (two walls at 90 degrees), are left.
   void choose_shear_frames() {
     const auto& p = out_.points;
+    // a direction's sign made canonical: its largest component positive
+    auto canonical = [](point3 x) {
+      std::size_t big = 0;
+      for (std::size_t k = 1; k < 3; ++k)
+        if (std::abs(x[k]) > std::abs(x[big])) big = k;
+      return x[big] < 0 ? -1.0 * x : x;
+    };
     // classes of parallel slanted planes: normals (largest component made positive) within 1e-9
     // radians of a class's first, found through bins of 1e-6 of the components and their
     // neighbours (a placement choice, not topology). Walls parallel only to more than that get
@@ -2100,11 +2107,7 @@ class state3 : public state<3> {
     for (std::uint32_t f = 0; f < facets_.size(); ++f) {
       const auto& S = facets_[f];
       if (S.constant[static_cast<std::size_t>(S.axis)] || S.sides.empty()) continue;
-      point3 n = S.unit;
-      std::size_t big = 0;
-      for (std::size_t k = 1; k < 3; ++k)
-        if (std::abs(n[k]) > std::abs(n[big])) big = k;
-      if (n[big] < 0) n = -1.0 * n;
+      const point3 n = canonical(S.unit);
       const auto b = bin_of(n);
       std::size_t found = classes.size();
       for (long dx = -1; dx <= 1 && found == classes.size(); ++dx)
@@ -2138,11 +2141,7 @@ class state3 : public state<3> {
         }
       d = d - dot(d, n) * n;
       if (!(dot(d, d) > 0)) continue;
-      d = (1.0 / std::sqrt(dot(d, d))) * d;
-      std::size_t big = 0;
-      for (std::size_t k = 1; k < 3; ++k)
-        if (std::abs(d[k]) > std::abs(d[big])) big = k;
-      if (d[big] < 0) d = -1.0 * d;
+      d = canonical((1.0 / std::sqrt(dot(d, d))) * d);
       point3 u = d + cross(n, d);
       u = (1.0 / std::sqrt(dot(u, u))) * u;
       for (std::uint32_t f : classes[c].facets) {
