@@ -434,7 +434,14 @@ int run(const gsse::plc<D>& p, const args& a) {
          << ", \"seconds\": {\"plan\": " << r.refinement.plan_seconds << ", \"conform\": " << r.refinement.conform_seconds
          << ", \"label\": " << r.refinement.label_seconds << ", \"mesh\": " << r.refinement.mesh_seconds << "}"
          << ", \"cavity_cells\": " << r.refinement.cavity_cells << ", \"cavity_made\": " << r.refinement.cavity_made
-         << ", \"full_remeshes\": " << r.refinement.full_remeshes << "}";
+         << ", \"full_remeshes\": " << r.refinement.full_remeshes << ", \"per_round\": [";
+      for (std::size_t k = 0; k < r.refinement.per_round.size(); ++k) {
+        const auto& x = r.refinement.per_round[k];
+        js << (k ? ", " : "") << "{\"bad\": " << x.bad << ", \"inserted\": " << x.inserted << ", \"boundary_splits\": " << x.split_requests
+           << ", \"cavity_cells\": " << x.cavity_cells << ", \"cavity_made\": " << x.cavity_made << ", \"seconds\": {\"plan\": " << x.plan_seconds
+           << ", \"conform\": " << x.conform_seconds << ", \"label\": " << x.label_seconds << ", \"mesh\": " << x.mesh_seconds << "}}";
+      }
+      js << "]}";
     }
     js << "}";
     js << ", \"verified\": " << (a.verify ? "true" : "null") << "}\n";

@@ -122,6 +122,25 @@ BOOST_AUTO_TEST_CASE(radius_edge_bound_3d) {
     BOOST_TEST(r.refinement.converged);
     BOOST_TEST(r.refinement.bad_left == 0u);
     BOOST_TEST(r.refinement.rounds > 0u);
+    // the rounds one by one (--stats per_round): one record a round, adding up to the totals (the
+    // plan's total also holds the last plan, which no round follows; each record's first plan
+    // found bad elements)
+    const auto& rounds = r.refinement.per_round;
+    BOOST_TEST(rounds.size() == r.refinement.rounds);
+    std::size_t inserted = 0, splits = 0, dead = 0, made = 0;
+    double plan = 0, mesh = 0;
+    for (const auto& x : rounds) {
+      inserted += x.inserted, splits += x.split_requests, dead += x.cavity_cells, made += x.cavity_made;
+      plan += x.plan_seconds, mesh += x.mesh_seconds;
+      BOOST_TEST(x.bad > 0u);
+      BOOST_TEST(x.inserted + x.split_requests > 0u);
+    }
+    BOOST_TEST(inserted == r.refinement.inserted);
+    BOOST_TEST(splits == r.refinement.split_requests);
+    BOOST_TEST(dead == r.refinement.cavity_cells);
+    BOOST_TEST(made == r.refinement.cavity_made);
+    BOOST_TEST(mesh == r.refinement.mesh_seconds);  // the same sums, in the same order
+    BOOST_TEST(plan <= r.refinement.plan_seconds);
     BOOST_TEST(q.max_ratio <= 1.414 * (1 + 1e-9), (rotated ? "rotated: " : "") << "max radius-edge " << q.max_ratio);
     // and no sliver (the default sliver angle, 5): every dihedral angle in [5, 170] degrees
     BOOST_TEST(q.below5 == 0u, (rotated ? "rotated: " : "") << q.below5 << " elements below 5 degrees");

@@ -1890,7 +1890,8 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     auto pl = plan_round(cells, b, bound, o.threads, size, D == 3 ? o.sliver_angle : 0.0, &l, &todo, o.acute_guard,
                          keep_balls ? &balls : nullptr, &floor,
                          D == 3 ? o.graded3.get() : nullptr, &vertex_h, &o.segment_maximum2);
-    st.plan_seconds += lap();
+    const double plan_seconds = lap();
+    st.plan_seconds += plan_seconds;
     st.outside += pl.outside;
     st.bad_left = pl.bad;
     st.excepted = pl.excepted;
@@ -1914,6 +1915,8 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     ++st.rounds;
     st.inserted += pl.add.size();
     st.split_requests += pl.split.size();
+    auto& rec = st.per_round.emplace_back();
+    rec.bad = pl.bad, rec.inserted = pl.add.size(), rec.split_requests = pl.split.size(), rec.plan_seconds = plan_seconds;
     if (o.progress)
       o.progress((std::isfinite(bound) ? "quality round " : "size round ") + std::to_string(st.rounds) + ": " + std::to_string(pl.bad) +
                  (std::isfinite(bound) ? " elements above the bound, " : " elements too large, ") +
@@ -1922,14 +1925,17 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
     // last good mesh, its boundary and labels as they were; the failure is reported, not hidden
     try {
       auto b2 = boundary_rounds.next(b, pl.add, pl.split);
-      st.conform_seconds += lap();
+      rec.conform_seconds = lap();
+      st.conform_seconds += rec.conform_seconds;
       auto l2 = conformer::label_refined(b2, p, b, l, o.threads);
-      st.label_seconds += lap();
+      rec.label_seconds = lap();
+      st.label_seconds += rec.label_seconds;
       // remesh_cavities changes cells and todo only when it succeeds, and a full meshing that
       // throws assigns nothing: the last good mesh survives a failed round without a copy
       std::size_t removed = 0, made = 0;
       if (remesh_cavities(b, b2, l, l2, cells, o.threads, &removed, &made, &todo, keep_balls ? &balls : nullptr, &runs)) {
         st.cavity_cells += removed, st.cavity_made += made;
+        rec.cavity_cells = removed, rec.cavity_made = made;
       } else {
         cells = mesh.wrap(b2, l2);
         spatial_order(cells, b2.points, o.threads);
@@ -1938,10 +1944,12 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
         runs.clear();
         ++st.full_remeshes;
       }
-      st.mesh_seconds += lap();
+      rec.mesh_seconds = lap();
+      st.mesh_seconds += rec.mesh_seconds;
       b = std::move(b2), l = std::move(l2);
     } catch (const std::exception& e) {
       st.failure = "round " + std::to_string(st.rounds) + ": " + e.what();
+      st.per_round.pop_back();
       --st.rounds;
       st.inserted -= pl.add.size();
       st.split_requests -= pl.split.size();

@@ -125,6 +125,15 @@ struct stats {
   // cells deleted and made by the rounds' cavity re-meshing; rounds meshed from scratch instead
   // (a cavity that did not close or fill its volume: a safety net, 0 on every input measured)
   std::size_t cavity_cells = 0, cavity_made = 0, full_remeshes = 0;
+  // each round, in order: what its plan found and chose, and its steps' wall seconds (the sums
+  // above but for the plan, whose total also holds the last plan, the one no round follows). A
+  // run's tail of small rounds shows here, without instrumenting the code (--stats
+  // quality.refinement.per_round)
+  struct round_record {
+    std::size_t bad = 0, inserted = 0, split_requests = 0, cavity_cells = 0, cavity_made = 0;
+    double plan_seconds = 0, conform_seconds = 0, label_seconds = 0, mesh_seconds = 0;
+  };
+  std::vector<round_record> per_round;
   // not empty: a round failed (its error); the mesh is the last good round's. Seen on the rotated
   // MOSFET and FinFET: after round 2 the labelling finds a region point outside the domain
   std::string failure;
