@@ -523,18 +523,29 @@ labelling label_refined_impl(const boundary<D>& b, const plc<D>& p, const bounda
     else
       return cross(x.points[F[1]] - x.points[F[0]], x.points[F[2]] - x.points[F[0]]);
   };
+  // (the faces come source by source: a source is looked up once per run of its faces, not once
+  // per face; the map's iterators stay valid as it grows)
   std::map<std::uint32_t, entry> sides;
+  auto it = sides.end();
   for (std::size_t f = 0; f < before.faces.size(); ++f) {
-    auto [it, fresh] = sides.try_emplace(before.face_source[f], entry{l.side[f]});
-    if (!fresh && it->second.side != l.side[f]) it->second.side = mixed;
+    if (it == sides.end() || it->first != before.face_source[f]) it = sides.try_emplace(before.face_source[f], entry{l.side[f]}).first;
+    if (it->second.side != l.side[f]) it->second.side = mixed;
     const point<D> d = direction(before, f);
     if (const double n = dot(d, d); n > it->second.before_len) it->second.before_len = n, it->second.before_dir = d;
   }
-  std::vector<const entry*> of(b.faces.size());  // each face's source, looked up once
+  struct run {
+    std::size_t first, end;
+    const entry* source;
+  };
+  std::vector<run> of;  // b's faces, by runs of one source
+  it = sides.end();
   for (std::size_t f = 0; f < b.faces.size(); ++f) {
-    auto it = sides.find(b.face_source[f]);
-    if (it == sides.end() || it->second.side == mixed) return label_impl(b, p, threads);
-    of[f] = &it->second;
+    if (it == sides.end() || it->first != b.face_source[f]) {
+      it = sides.find(b.face_source[f]);
+      if (it == sides.end() || it->second.side == mixed) return label_impl(b, p, threads);
+      of.push_back({f, f, &it->second});
+    }
+    of.back().end = f + 1;
     const point<D> d = direction(b, f);
     if (const double n = dot(d, d); n > it->second.len) it->second.len = n, it->second.dir = d;
   }
@@ -547,7 +558,8 @@ labelling label_refined_impl(const boundary<D>& b, const plc<D>& p, const bounda
   labelling out;
   out.regions = l.regions;
   out.side.resize(b.faces.size());
-  for (std::size_t f = 0; f < b.faces.size(); ++f) out.side[f] = of[f]->side;
+  for (const auto& r : of)
+    std::fill(out.side.begin() + static_cast<long>(r.first), out.side.begin() + static_cast<long>(r.end), r.source->side);
   return out;
 }
 
