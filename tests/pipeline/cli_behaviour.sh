@@ -192,8 +192,18 @@ PY
 if [ $rc = 0 ] && [ "$verdict" = ok ] && [[ "$out" == *"near the input point (0.5, 0.5, 4)"* ]]; then ok "--quality on the needle: excepted at the apex, in --stats and the summary"
 else bad "--quality on the needle: exit $rc, $verdict"; fi
 "$mesh" "$work/needle.poly" --quality 2 --grade 1.3 --quality-rounds 3 --stats "$work/n3.json" --quiet; rc=$?
-verdict=$($py -c "import json,sys; r=json.load(open(sys.argv[1]))['quality']['refinement']; print('ok' if r['rounds'] == 3 and not r['converged'] else r)" "$work/n3.json")
-if [ $rc = 0 ] && [ "$verdict" = ok ]; then ok "--quality-rounds 3: 3 rounds, not converged"; else bad "--quality-rounds 3: exit $rc, $verdict"; fi
+verdict=$($py - "$work/n3.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))["quality"]["refinement"]
+rounds = r["per_round"]  # one record a round, adding up to the totals
+ok = r["rounds"] == 3 and not r["converged"] and len(rounds) == 3 \
+     and sum(x["inserted"] for x in rounds) == r["inserted"] and sum(x["boundary_splits"] for x in rounds) == r["boundary_splits"] \
+     and sum(x["cavity_made"] for x in rounds) == r["cavity_made"] and all(x["bad"] > 0 for x in rounds) \
+     and abs(sum(x["seconds"]["mesh"] for x in rounds) - r["seconds"]["mesh"]) <= 1e-5 * r["seconds"]["mesh"] + 1e-9
+print("ok" if ok else r)
+PY
+)
+if [ $rc = 0 ] && [ "$verdict" = ok ]; then ok "--quality-rounds 3: 3 rounds, not converged, each in --stats per_round"; else bad "--quality-rounds 3: exit $rc, $verdict"; fi
 "$mesh" "$work/needle.poly" --quality 2 --grade 1.3 --quality-rounds 5 --acute-guard 0 --stats "$work/n0.json" --quiet; rc=$?
 verdict=$($py -c "import json,sys; r=json.load(open(sys.argv[1]))['quality']['refinement']; print('ok' if r['excepted'] == 0 and r['excepted_near'] == [] and r['above_bound'] > 0 else r)" "$work/n0.json")
 if [ $rc = 0 ] && [ "$verdict" = ok ]; then ok "--acute-guard 0: nothing excepted"; else bad "--acute-guard 0: exit $rc, $verdict"; fi
