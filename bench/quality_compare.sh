@@ -35,7 +35,7 @@ fi
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 # the settings gsse-mesh gives itself, read from its source
 tunables=$(grep -o '"glibc[^"]*"' "$(cd "$(dirname "$0")/.." && pwd)/apps/allocator_tuning.hpp" | tr -d '"' | tr -d '\n')
-declare -A SIZES=([mosfet]="0.0304 0.0161" [diffusion]="0.0451 0.0248" [trench]="0.0442 0.0243" [finfet]="0.0276 0.0152")
+. "$(cd "$(dirname "$0")" && pwd)/sizes.sh"  # SIZES, H
 # SIZE_PICK=1: only the first size (about 1e5 tetrahedra), 2: only the second (about 6e5)
 if [ -n "${SIZE_PICK:-}" ]; then
   for s in "${!SIZES[@]}"; do read -ra hs <<< "${SIZES[$s]}"; SIZES[$s]=${hs[$((SIZE_PICK - 1))]}; done

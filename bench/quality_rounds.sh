@@ -16,7 +16,7 @@ BOUND=${BOUND:-1.414}
 HERE=$(cd "$(dirname "$0")" && pwd)
 GEN=${GSSE_SHARED_DIR:-$HERE/../../shared}/bench/structures.py
 [ -f "$GEN" ] || { echo "needs $GEN" >&2; exit 2; }
-declare -A H=([mosfet]=0.0304 [diffusion]=0.0451 [trench]=0.0442 [finfet]=0.0276)
+. "$(cd "$(dirname "$0")" && pwd)/sizes.sh"  # SIZES, H
 [ -n "${H[$N]:-}" ] || { echo "STRUCTURE is one of: ${!H[*]}" >&2; exit 2; }
 W=$(mktemp -d)
 trap 'rm -rf "$W"' EXIT

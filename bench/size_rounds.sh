@@ -19,7 +19,7 @@ DIM=${DIM:-3}
 HERE=$(cd "$(dirname "$0")" && pwd)
 GEN=${GSSE_SHARED_DIR:-$HERE/../../shared}/bench/structures.py
 [ -f "$GEN" ] || { echo "needs $GEN" >&2; exit 2; }
-declare -A H=([mosfet]=0.0304 [diffusion]=0.0451 [trench]=0.0442 [finfet]=0.0276)
+. "$(cd "$(dirname "$0")" && pwd)/sizes.sh"  # SIZES, H
 W=$(mktemp -d)
 trap 'rm -rf "$W"' EXIT
 echo "| structure | sizing | rounds | points | above 1.5 h | longest | rounds | inserted + splits | wall s | peak MB |"

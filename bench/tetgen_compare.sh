@@ -15,7 +15,7 @@ shared=${GSSE_SHARED_DIR:-$(dirname "$0")/../../shared}
 repeat=${REPEAT:-3}
 command -v tetgen >/dev/null || { apt-get update -q >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -q tetgen >/dev/null; }
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-declare -A SIZES=([mosfet]="0.0304 0.0161" [diffusion]="0.0451 0.0248" [trench]="0.0442 0.0243" [finfet]="0.0276 0.0152")
+. "$(cd "$(dirname "$0")" && pwd)/sizes.sh"  # SIZES, H
 quality() {  # base of a .node/.ele mesh -> "median_re max_re min_dihedral"
   python3 - "$1" <<'PY'
 import sys, math
