@@ -1660,7 +1660,11 @@ class state3 : public state<3> {
       const double h = dot(n, e);
       return (o > 0 ? h : -h) > 1e-6 * nn * std::sqrt(dot(e, e));
     };
-    grid_.finest().visit_rings(g, box_lo_, box_hi_, [&](vertex_id y) { return !worth_testing(y) || (++seen, !(held = !outside(y))); },
+    // (the rings about a point a cell off the facet, on that side: the first cells read hold such
+    // points, not the facet's own ones and those across it; which point is found first does not
+    // change the answer)
+    const point3 start = nn > 0 ? g + ((o > 0 ? grid_h_ : -grid_h_) / nn) * n : g;
+    grid_.finest().visit_rings(start, box_lo_, box_hi_, [&](vertex_id y) { return !worth_testing(y) || (++seen, !(held = !outside(y))); },
                       [&] { return ++ring > 2 && (seen >= 64 || ring > 6); });
     if (held) return false;
     point3 cc;

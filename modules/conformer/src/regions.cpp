@@ -524,36 +524,90 @@ labelling label_refined_impl(const boundary<D>& b, const plc<D>& p, const bounda
       return cross(x.points[F[1]] - x.points[F[0]], x.points[F[2]] - x.points[F[0]]);
   };
   // (the faces come source by source: a source is looked up once per run of its faces, not once
-  // per face; the map's iterators stay valid as it grows)
-  std::map<std::uint32_t, entry> sides;
-  auto it = sides.end();
-  for (std::size_t f = 0; f < before.faces.size(); ++f) {
-    if (it == sides.end() || it->first != before.face_source[f]) it = sides.try_emplace(before.face_source[f], entry{l.side[f]}).first;
-    if (it->second.side != l.side[f]) it->second.side = mixed;
-    const point<D> d = direction(before, f);
-    if (const double n = dot(d, d); n > it->second.before_len) it->second.before_len = n, it->second.before_dir = d;
-  }
+  // per face; the map's iterators stay valid as it grows). The directions are measured afterwards,
+  // and only for a source whose faces differ between the two boundaries: one run in each, face for
+  // face the same, is oriented alike whatever its largest face (a refinement round re-triangulates
+  // a few facets; measuring every face of both boundaries, serially, was 1.4-1.8 ms a round of the
+  // rotated trench, docs/benchmarks.md, fifty-eighth part)
   struct run {
     std::size_t first, end;
-    const entry* source;
+    std::uint32_t id;  // the source
+    entry* source;
   };
+  std::map<std::uint32_t, entry> sides;
+  std::vector<run> was;  // before's faces, by runs of one source
+  auto it = sides.end();
+  for (std::size_t f = 0; f < before.faces.size(); ++f) {
+    if (it == sides.end() || it->first != before.face_source[f]) {
+      it = sides.try_emplace(before.face_source[f], entry{l.side[f]}).first;
+      was.push_back({f, f, it->first, &it->second});
+    }
+    was.back().end = f + 1;
+    if (it->second.side != l.side[f]) it->second.side = mixed;
+  }
   std::vector<run> of;  // b's faces, by runs of one source
   it = sides.end();
   for (std::size_t f = 0; f < b.faces.size(); ++f) {
     if (it == sides.end() || it->first != b.face_source[f]) {
       it = sides.find(b.face_source[f]);
       if (it == sides.end() || it->second.side == mixed) return label_impl(b, p, threads);
-      of.push_back({f, f, &it->second});
+      of.push_back({f, f, it->first, &it->second});
     }
     of.back().end = f + 1;
-    const point<D> d = direction(b, f);
-    if (const double n = dot(d, d); n > it->second.len) it->second.len = n, it->second.dir = d;
   }
-  for (auto& [source, e] : sides) {
-    if (e.len < 0) continue;  // no face of it in b
+  // per source: its runs in each boundary, and whether it has one in each with the same faces (of
+  // the same points: b's points begin with before's, as in the refinement's rounds)
+  const bool same_points = b.points.size() >= before.points.size() &&
+                           std::equal(before.points.begin(), before.points.end(), b.points.begin());
+  using runs_pair = std::pair<std::vector<const run*>, std::vector<const run*>>;
+  std::map<std::uint32_t, runs_pair> runs_of;
+  for (const auto& r : was) runs_of[r.id].first.push_back(&r);
+  for (const auto& r : of) runs_of[r.id].second.push_back(&r);
+  std::vector<std::pair<entry*, const runs_pair*>> measure;
+  for (const auto& [id, rs] : runs_of) {
+    if (rs.second.empty()) continue;  // no face of it in b
+    if (same_points && rs.first.size() == 1 && rs.second.size() == 1) {
+      const run &x = *rs.first[0], &y = *rs.second[0];
+      if (x.end - x.first == y.end - y.first &&
+          std::equal(before.faces.begin() + static_cast<long>(x.first), before.faces.begin() + static_cast<long>(x.end),
+                     b.faces.begin() + static_cast<long>(y.first), [](const auto& u, const auto& v) {
+                       for (std::size_t i = 0; i < D; ++i)  // element by element (std::array's == calls memcmp)
+                         if (u[i] != v[i]) return false;
+                       return true;
+                     }))
+        continue;
+    }
+    measure.push_back({rs.second[0]->source, &rs});
+  }
+  // each source's largest face in each boundary (in face order, the first of equal ones), in
+  // parallel over the sources
+  std::vector<std::size_t> which(measure.size());
+  std::iota(which.begin(), which.end(), std::size_t{0});
+  std::vector<char> flip(measure.size(), 0), unclear(measure.size(), 0);
+  for_each(execution::par(threads), which, [&](std::size_t k) {
+    entry e = *measure[k].first;
+    for (const run* r : measure[k].second->first)
+      for (std::size_t f = r->first; f < r->end; ++f) {
+        const point<D> d = direction(before, f);
+        if (const double n = dot(d, d); n > e.before_len) e.before_len = n, e.before_dir = d;
+      }
+    for (const run* r : measure[k].second->second)
+      for (std::size_t f = r->first; f < r->end; ++f) {
+        const point<D> d = direction(b, f);
+        if (const double n = dot(d, d); n > e.len) e.len = n, e.dir = d;
+      }
     const double c = dot(e.dir, e.before_dir);
-    if (!(std::abs(c) >= 0.5 * std::sqrt(e.len) * std::sqrt(e.before_len))) return label_impl(b, p, threads);
-    if (c < 0) std::swap(e.side[0], e.side[1]);
+    unclear[k] = !(std::abs(c) >= 0.5 * std::sqrt(e.len) * std::sqrt(e.before_len));
+    flip[k] = c < 0;
+  }, [&](std::size_t k) {
+    double n = 0;
+    for (const run* r : measure[k].second->first) n += static_cast<double>(r->end - r->first);
+    for (const run* r : measure[k].second->second) n += static_cast<double>(r->end - r->first);
+    return n;
+  });
+  for (std::size_t k = 0; k < measure.size(); ++k) {
+    if (unclear[k]) return label_impl(b, p, threads);
+    if (flip[k]) std::swap(measure[k].first->side[0], measure[k].first->side[1]);
   }
   labelling out;
   out.regions = l.regions;
