@@ -1032,6 +1032,15 @@ BOOST_AUTO_TEST_CASE(labels_carry_over_from_another_conform_of_the_same_plc) {
     for (std::size_t f = 0; f < half.faces.size(); ++f)
       if (half.face_source[f] % 2) std::swap(half.faces[f][0], half.faces[f][1]), std::swap(hl.side[f][0], hl.side[f][1]);
     BOOST_TEST((conformer::label_refined(b, p, half, hl, 2).side == full.side), p.source << ": a reversed source's sides not swapped");
+    // the same boundary (as between a refinement round and its resume, the same points): a
+    // source whose faces are the same in both keeps its sides unmeasured, and only the others are
+    // measured; with half the sources reversed in `before`, those must still be found and swapped
+    BOOST_TEST((conformer::label_refined(b, p, b, full, 2).side == full.side), p.source << ": a boundary's own sides not carried");
+    auto self_half = b;
+    auto self_hl = full;
+    for (std::size_t f = 0; f < self_half.faces.size(); ++f)
+      if (self_half.face_source[f] % 2) std::swap(self_half.faces[f][0], self_half.faces[f][1]), std::swap(self_hl.side[f][0], self_hl.side[f][1]);
+    BOOST_TEST((conformer::label_refined(b, p, self_half, self_hl, 2).side == full.side), p.source << ": a reversed source of the same points not swapped");
   };
   for (bool rotated : {false, true}) {
     const auto p = stack(1, {0, 0.3, 0.35, 1}, rotated);
