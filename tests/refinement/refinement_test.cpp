@@ -1010,9 +1010,10 @@ BOOST_AUTO_TEST_CASE(labels_carry_over_from_another_conform_of_the_same_plc) {
   // same PLC, another conformer run) and the conformer reads its facets' meshed sides from it:
   // label_refined must give label()'s sides, also where a source's faces are oriented the other
   // way round in `before` (the sides swap), on axis-aligned and turned (slanted) facets
-  auto reversed = [](auto b, auto l) {  // every face turned over, its sides swapped
-    for (auto& F : b.faces) std::swap(F[0], F[1]);
-    for (auto& s : l.side) std::swap(s[0], s[1]);
+  // every face (or every face of an odd-numbered source) turned over, its sides swapped
+  auto reversed = [](auto b, auto l, bool odd_sources_only = false) {
+    for (std::size_t f = 0; f < b.faces.size(); ++f)
+      if (!odd_sources_only || b.face_source[f] % 2) std::swap(b.faces[f][0], b.faces[f][1]), std::swap(l.side[f][0], l.side[f][1]);
     return std::pair(b, l);
   };
   auto check = [&](const auto& p, double size, const auto& volume) {
@@ -1027,19 +1028,13 @@ BOOST_AUTO_TEST_CASE(labels_carry_over_from_another_conform_of_the_same_plc) {
     const auto [rb, rl] = reversed(coarse, lc);
     BOOST_TEST((conformer::label_refined(b, p, rb, rl, 2).side == full.side), p.source << ": sides of reversed faces not swapped");
     // half the sources reversed: each source is matched on its own
-    auto half = coarse;
-    auto hl = lc;
-    for (std::size_t f = 0; f < half.faces.size(); ++f)
-      if (half.face_source[f] % 2) std::swap(half.faces[f][0], half.faces[f][1]), std::swap(hl.side[f][0], hl.side[f][1]);
+    const auto [half, hl] = reversed(coarse, lc, true);
     BOOST_TEST((conformer::label_refined(b, p, half, hl, 2).side == full.side), p.source << ": a reversed source's sides not swapped");
     // the same boundary (as between a refinement round and its resume, the same points): a
     // source whose faces are the same in both keeps its sides unmeasured, and only the others are
     // measured; with half the sources reversed in `before`, those must still be found and swapped
     BOOST_TEST((conformer::label_refined(b, p, b, full, 2).side == full.side), p.source << ": a boundary's own sides not carried");
-    auto self_half = b;
-    auto self_hl = full;
-    for (std::size_t f = 0; f < self_half.faces.size(); ++f)
-      if (self_half.face_source[f] % 2) std::swap(self_half.faces[f][0], self_half.faces[f][1]), std::swap(self_hl.side[f][0], self_hl.side[f][1]);
+    const auto [self_half, self_hl] = reversed(b, full, true);
     BOOST_TEST((conformer::label_refined(b, p, self_half, self_hl, 2).side == full.side), p.source << ": a reversed source of the same points not swapped");
   };
   for (bool rotated : {false, true}) {
