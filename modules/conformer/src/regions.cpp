@@ -513,8 +513,6 @@ labelling label_refined_impl(const boundary<D>& b, const plc<D>& p, const bounda
   // 1/2, far above rounding: a degenerate largest face), b is labelled in full
   struct entry {
     std::array<int, 2> side;
-    point<D> before_dir{}, dir{};
-    double before_len = -1, len = -1;
   };
   auto direction = [](const boundary<D>& x, std::size_t f) {
     const auto& F = x.faces[f];
@@ -570,11 +568,7 @@ labelling label_refined_impl(const boundary<D>& b, const plc<D>& p, const bounda
       const run &x = *rs.first[0], &y = *rs.second[0];
       if (x.end - x.first == y.end - y.first &&
           std::equal(before.faces.begin() + static_cast<long>(x.first), before.faces.begin() + static_cast<long>(x.end),
-                     b.faces.begin() + static_cast<long>(y.first), [](const auto& u, const auto& v) {
-                       for (std::size_t i = 0; i < D; ++i)  // element by element (std::array's == calls memcmp)
-                         if (u[i] != v[i]) return false;
-                       return true;
-                     }))
+                     b.faces.begin() + static_cast<long>(y.first), same_vertices<D>))
         continue;
     }
     measure.push_back({rs.second[0]->source, &rs});
@@ -585,19 +579,19 @@ labelling label_refined_impl(const boundary<D>& b, const plc<D>& p, const bounda
   std::iota(which.begin(), which.end(), std::size_t{0});
   std::vector<char> flip(measure.size(), 0), unclear(measure.size(), 0);
   for_each(execution::par(threads), which, [&](std::size_t k) {
-    entry e = *measure[k].first;
-    for (const run* r : measure[k].second->first)
-      for (std::size_t f = r->first; f < r->end; ++f) {
-        const point<D> d = direction(before, f);
-        if (const double n = dot(d, d); n > e.before_len) e.before_len = n, e.before_dir = d;
-      }
-    for (const run* r : measure[k].second->second)
-      for (std::size_t f = r->first; f < r->end; ++f) {
-        const point<D> d = direction(b, f);
-        if (const double n = dot(d, d); n > e.len) e.len = n, e.dir = d;
-      }
-    const double c = dot(e.dir, e.before_dir);
-    unclear[k] = !(std::abs(c) >= 0.5 * std::sqrt(e.len) * std::sqrt(e.before_len));
+    auto largest = [&](const boundary<D>& x, const std::vector<const run*>& rs, point<D>& dir) {
+      double len = -1;
+      for (const run* r : rs)
+        for (std::size_t f = r->first; f < r->end; ++f) {
+          const point<D> d = direction(x, f);
+          if (const double n = dot(d, d); n > len) len = n, dir = d;
+        }
+      return len;
+    };
+    point<D> before_dir{}, dir{};
+    const double before_len = largest(before, measure[k].second->first, before_dir), len = largest(b, measure[k].second->second, dir);
+    const double c = dot(dir, before_dir);
+    unclear[k] = !(std::abs(c) >= 0.5 * std::sqrt(len) * std::sqrt(before_len));
     flip[k] = c < 0;
   }, [&](std::size_t k) {
     double n = 0;

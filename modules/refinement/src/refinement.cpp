@@ -1056,15 +1056,6 @@ namespace {
 template <std::size_t D>
 using face_t = std::array<vertex_id, D>;
 
-/// x == y, element by element (std::array's == called memcmp for each face: 2-3% of a run in the
-/// faces' comparison between rounds).
-template <std::size_t D>
-bool same_face(const face_t<D>& x, const face_t<D>& y) {
-  bool eq = true;
-  for (std::size_t k = 0; k < D; ++k) eq &= x[k] == y[k];
-  return eq;
-}
-
 template <std::size_t D>
 face_t<D> key_of(face_t<D> f) {
   std::sort(f.begin(), f.end());
@@ -1281,7 +1272,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     for (std::size_t i = 0; i + 1 < r0.size(); ++i) {
       const std::size_t a0 = r0[i], e0 = r0[i + 1], a1 = r1[i], e1 = r1[i + 1];
       if (!(e0 - a0 == e1 - a1 && std::equal(b0.faces.begin() + static_cast<long>(a0), b0.faces.begin() + static_cast<long>(e0),
-                                             b1.faces.begin() + static_cast<long>(a1), same_face<D>)))
+                                             b1.faces.begin() + static_cast<long>(a1), same_vertices<D>)))
         differ.push_back({a0, e0, a1, e1});
     }
   } else {
@@ -1298,7 +1289,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     // neither went nor came: a face is listed once, so it is not elsewhere in either list. The
     // common tail first (aligned from the end: a run that grew), then place by place from the
     // start; only the faces left over are compared as sets
-    auto same = same_face<D>;
+    auto same = same_vertices<D>;
     while (a0 < e0 && a1 < e1 && same(b0.faces[e0 - 1], b1.faces[e1 - 1])) --e0, --e1;
     std::vector<std::size_t> old_at, new_at;  // the places left over
     std::vector<face_t<D>> old_keys, new_keys;
