@@ -194,6 +194,23 @@ BOOST_AUTO_TEST_CASE(graded_size_bounds_the_edges_3d) {
   }
 }
 
+// The turned stack's boundary conformed at size 0.12 (no volume points), labelled, and meshed:
+// a plan's input with slanted facets
+struct boundary_mesh {
+  conformer::boundary<3> b;
+  conformer::labelling l;
+  refinement::cells_by_region<3> cells;
+};
+boundary_mesh turned_stack_mesh() {
+  const auto p = stack(1, {0, 0.4, 0.5, 1}, true);
+  conformer::options co;
+  co.size = 0.12;
+  boundary_mesh m{conformer::conform(p, {}, co), {}, {}};
+  m.l = conformer::label(m.b, p, 1);
+  m.cells = pl::mesh_segments<3>::wrap(m.b, m.l, 2);
+  return m;
+}
+
 // The graded edge rule's shortcut (refinement::edge_sizes): an edge cleared by the bounds at its
 // ends is one its midpoint's own query would clear too, so one round's plan is the same whether
 // the field is asked at every edge's midpoint (slope unknown), from fresh vertex bounds, or from
@@ -201,12 +218,8 @@ BOOST_AUTO_TEST_CASE(graded_size_bounds_the_edges_3d) {
 // points, splits and counts, and the shortcut asks the field fewer times. On the turned stack's
 // boundary-only mesh, h = 0.08 + 0.3 |x - c| with segment 2's own maximum 0.15.
 BOOST_AUTO_TEST_CASE(graded_edge_rule_asks_what_every_query_would) {
-  const auto p = stack(1, {0, 0.4, 0.5, 1}, true);
-  conformer::options co;
-  co.size = 0.12;
-  const auto b = conformer::conform(p, {}, co);
-  const auto l = conformer::label(b, p, 1);
-  const auto cells = pl::mesh_segments<3>::wrap(b, l, 2);
+  const auto m = turned_stack_mesh();
+  const auto& [b, l, cells] = m;
   const point3 c = turn(point3{0.3, 0.6, 0.45});
   auto h = [c](const point3& x) { return 0.08 + 0.3 * distance(x, c); };
   std::atomic<long> asked{0};
@@ -248,6 +261,38 @@ BOOST_AUTO_TEST_CASE(graded_edge_rule_asks_what_every_query_would) {
     BOOST_TEST(fresh.lower[v] <= h(b.points[v]), "vertex " << v << ": bound " << fresh.lower[v] << " above h " << h(b.points[v]));
   BOOST_TEST_MESSAGE("queries: every midpoint " << q_every << ", fresh bounds " << q_fresh << ", loose bounds " << q_loose);
   BOOST_TEST(q_fresh < q_every);
+}
+
+// The plan measures and proposes from a cell's vertex set, not from the order its vertices are
+// listed in: the same cells with their vertices permuted (even permutations, so each keeps its
+// orientation) give bit for bit the same points, splits and counts. On the turned stack's
+// boundary-only mesh, whose circumcentres are rounded differently for each order of the same
+// four points.
+BOOST_AUTO_TEST_CASE(plan_does_not_depend_on_vertex_order) {
+  const auto m = turned_stack_mesh();
+  const auto& [b, l, cells] = m;
+  auto plan_of = [&](const refinement::cells_by_region<3>& cs) {
+    std::vector<std::vector<char>> todo;
+    for (const auto& r : cs) todo.emplace_back(r.size(), 1);
+    return refinement::plan_round<3>(cs, b, refinement::ratio_bound(3, 1.414), 2, [](const point3&) { return 0.12; }, 5.0, &l,
+                                     &todo, 1.0);
+  };
+  const auto a = plan_of(cells);
+  BOOST_TEST(a.add.size() > 10u);
+  BOOST_TEST(a.split.size() > 0u);
+  for (int perm = 0; perm < 2; ++perm) {
+    auto permuted = cells;
+    for (auto& r : permuted)
+      for (auto& c : r) c = perm == 0 ? std::array<vertex_id, 4>{c[1], c[2], c[0], c[3]} : std::array<vertex_id, 4>{c[1], c[0], c[3], c[2]};
+    const auto x = plan_of(permuted);
+    BOOST_TEST(x.bad == a.bad);
+    BOOST_TEST(x.large == a.large);
+    BOOST_TEST(x.split == a.split, boost::test_tools::per_element());
+    BOOST_REQUIRE_EQUAL(x.add.size(), a.add.size());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < a.add.size(); ++i) differ += !(x.add[i] == a.add[i]);  // bit for bit
+    BOOST_TEST(differ == 0u);
+  }
 }
 
 // 2D size alone (the size rounds' plan: bound +infinity): an edge longer than 1.5 h at its

@@ -674,8 +674,13 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   for_each(execution::par(threads), ids, [&](std::size_t k) {
     char* flag = chunks[k].todo;
     for (std::size_t ci = 0; ci < chunks[k].cells.size(); ++ci) {
-      const auto& c = chunks[k].cells[ci];
       if (flag && !flag[ci]) continue;
+      // the cell's vertices in ascending order: what is measured and proposed (circumcentre,
+      // radius, shortest edge, centroid, all in doubles) is then a function of the cell's vertex
+      // set, not of the order the front mesher listed them in (a fill that makes the same cells
+      // in another order makes the same points; test `plan_does_not_depend_on_vertex_order`)
+      auto c = chunks[k].cells[ci];
+      std::sort(c.begin(), c.end());
       double shortest = 1e300, longest = 0;
       std::size_t si = 0, sj = 1;
       for (std::size_t i = 0; i <= D; ++i)
