@@ -1347,6 +1347,9 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     for (std::size_t a = 0; a < cells[r].size(); a += piece) chunks.push_back({r, a, std::min(piece, cells[r].size() - a)});
   std::vector<std::vector<char>> dead(cells.size());
   for (std::size_t r = 0; r < cells.size(); ++r) dead[r].assign(cells[r].size(), 0);
+  // and each chunk's dead cells, ascending: the steps below read those, not every cell (a late
+  // round kills a few hundred of a graded run's million cells)
+  std::vector<std::vector<std::uint32_t>> dead_in(chunks.size());
   // a cell's circumball, computed the first time it is needed and kept (balls) across rounds
   auto ball_of = [&](std::size_t r, std::size_t i, cell_ball<D>& own) -> cell_ball<D>& {
     cell_ball<D>& ball = balls ? (*balls)[r][i] : own;
@@ -1359,6 +1362,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     return ball;
   };
   for_each(execution::par(threads), chunks, [&](const chunk& ch) {
+    auto& died = dead_in[static_cast<std::size_t>(&ch - chunks.data())];
     // runs of cell_run cells (spatial_order makes them lie together): a run with no flat cell and
     // neither a new point nor a vertex of a gone face in the box of its balls has no dead cell
     constexpr std::size_t run = cell_run;  // chunks start at multiples of it
@@ -1444,8 +1448,14 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
             }
         }
       }
+      for (std::size_t i = a; i < e; ++i)
+        if (dead[ch.region][i]) died.push_back(static_cast<std::uint32_t>(i));
     }
   }, [&](const chunk& ch) { return static_cast<double>(ch.count); });
+  std::vector<std::vector<std::uint32_t>> dead_at(cells.size());  // per region, ascending
+  for (std::size_t k = 0; k < chunks.size(); ++k)
+    dead_at[chunks[k].region].insert(dead_at[chunks[k].region].end(), dead_in[k].begin(), dead_in[k].end());
+  std::vector<std::vector<std::uint32_t>>().swap(dead_in);
   // 2. each region's cavity boundary: the faces of its dead cells met once, less the gone faces,
   // plus the new boundary faces on its side
   // the points a cavity can use, by place: the vertices of the dead cells (the cavity's boundary
@@ -1454,9 +1464,8 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   // alone follows the round's work, not the mesh's size (a late round re-fills a few cavities)
   std::vector<char> usable(p.size(), 0);
   for (std::size_t r = 0; r < cells.size(); ++r)
-    for (std::size_t i = 0; i < cells[r].size(); ++i)
-      if (dead[r][i])
-        for (auto v : cells[r][i]) usable[v] = 1;
+    for (const auto i : dead_at[r])
+      for (auto v : cells[r][i]) usable[v] = 1;
   std::vector<vertex_id> usable_ids;
   std::vector<point<D>> usable_at;
   for (std::size_t v = 0; v < p.size(); ++v)
@@ -1504,8 +1513,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     // the faces of the dead cells, by key: a face met twice (by two dead cells, facing opposite
     // ways) is inside the cavity, once is on its boundary
     std::vector<std::pair<packed_key<D>, face_t<D>>> met;  // (key, face facing into the dead cell)
-    for (std::size_t i = 0; i < cells[r].size(); ++i) {
-      if (!dead[r][i]) continue;
+    for (const auto i : dead_at[r]) {
       ++W.removed;
       for (const auto& g : faces_into<D>(cells[r][i])) met.push_back({pack<D>(key_of<D>(g)), g});
     }
@@ -1708,8 +1716,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       }
     added[r] = made_cells.size();
     const std::size_t old_size = cs.size();
-    for (std::size_t i = 0; i < old_size; ++i)
-      if (dr[i]) slots.push_back({code(cs[i]), static_cast<std::uint32_t>(i)});
+    for (const auto i : dead_at[r]) slots.push_back({code(cs[i]), i});
     radix_sort(fresh);  // both built in index order: std::sort's order of the pairs
     radix_sort(slots);
     // blocks of the code holding about 64 cells: 2^(D L) blocks for L levels
