@@ -68,9 +68,10 @@ std::pair<long, int> cast(const boundary<D>& b, const point<D>& o, const point<D
     if (static_cast<long>(f) == skip) continue;
     const auto& F = b.faces[f];
     if (skip_vertex != no_vertex && std::find(F.begin(), F.end(), skip_vertex) != F.end()) continue;
-    // every face: those whose box the ray misses first (the filter face_index applies; a few
-    // points a round, the late rounds' circumcentres of nearly flat cells, cast against every
-    // face, and two exact orientations a face were a tenth of a long run's time)
+    // without a list of faces: a face whose box the segment misses is skipped before the exact
+    // tests (the filter face_index applies). The late rounds' few located points (circumcentres
+    // of nearly flat cells) cast against every face, and two exact orientations a face were a
+    // tenth of a long run's time
     if (!only) {
       auto box = sizing::aabb<D>::empty();
       for (auto v : F) box.add(p[v]);
