@@ -42,7 +42,7 @@ void usage(std::FILE* to) {
       "usage: gsse-mesh INPUT [-o OUTPUT] [--size H] [--cloud POINTS.node] [--threads N] [--verify]\n"
       "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
       "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly] [--msh 4.1|2.2] [--verify-tol R]\n"
-      "                 [--grade G] [--no-feature-size] [--quality [B]] [--sliver-angle A]\n"
+      "                 [--grade G] [--no-feature-size] [--quality [B]] [--sliver-angle A] [--cavity-fill F]\n"
       "                 [--acute-guard F] [--quality-rounds N] [--size-fit] [--no-size-rounds]\n"
       "       gsse-mesh INPUT --check MESH [--threads N] [--quiet] [--verify-tol R]\n"
       "  INPUT    TetGen .poly/.smesh (3D), Triangle .poly (2D), or a closed surface: OFF, STL,\n"
@@ -62,6 +62,9 @@ void usage(std::FILE* to) {
       "           below B degrees (default 20.7, at most 33); the mesh stays conforming Delaunay\n"
       "  --sliver-angle A  with --quality in 3D: tetrahedra with a dihedral angle below A or above\n"
       "           180 - 2A degrees are refined too (default 5: none below 5 or above 170; 0: off)\n"
+      "  --cavity-fill insertion|front  3D rounds (--quality, size rounds): how a round re-fills\n"
+      "           the cells its points remove: by inserting them one at a time (default), or by the\n"
+      "           front mesher; the same cells, in another order (for comparison)\n"
       "  --acute-guard F  with --quality: small input angles excepted (3D: bad elements whose\n"
       "           circumcentre lies within F times an acute vertex's protecting ball, or within F\n"
       "           times its length of a piece of an input edge with a dihedral angle below 60\n"
@@ -114,6 +117,7 @@ struct args {
   bool verify = false, verify_tol_given = false, quiet = false, no_merge = false, msh22 = false;
   bool size_fit = false;  // --size-fit
   bool size_rounds = true;  // not --no-size-rounds
+  gsse::refinement::cavity_fill cavity_fill = gsse::refinement::cavity_fill::insertion;  // --cavity-fill
   std::size_t max_steiner = gsse::conformer::options{}.max_steiner;
 };
 
@@ -225,6 +229,7 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.quality = a.quality;
   o.quality_bound = a.quality_bound;
   o.sliver_angle = a.sliver_angle;
+  o.cavity_fill = a.cavity_fill;
   o.acute_guard = a.acute_guard;
   o.quality_rounds = a.quality_rounds;
   if (a.quality) {
@@ -434,11 +439,13 @@ int run(const gsse::plc<D>& p, const args& a) {
          << ", \"seconds\": {\"plan\": " << r.refinement.plan_seconds << ", \"conform\": " << r.refinement.conform_seconds
          << ", \"label\": " << r.refinement.label_seconds << ", \"mesh\": " << r.refinement.mesh_seconds << "}"
          << ", \"cavity_cells\": " << r.refinement.cavity_cells << ", \"cavity_made\": " << r.refinement.cavity_made
-         << ", \"full_remeshes\": " << r.refinement.full_remeshes << ", \"per_round\": [";
+         << ", \"full_remeshes\": " << r.refinement.full_remeshes << ", \"cavity_front_regions\": " << r.refinement.cavity_front_regions
+         << ", \"per_round\": [";
       for (std::size_t k = 0; k < r.refinement.per_round.size(); ++k) {
         const auto& x = r.refinement.per_round[k];
         js << (k ? ", " : "") << "{\"bad\": " << x.bad << ", \"inserted\": " << x.inserted << ", \"boundary_splits\": " << x.split_requests
-           << ", \"cavity_cells\": " << x.cavity_cells << ", \"cavity_made\": " << x.cavity_made << ", \"seconds\": {\"plan\": " << x.plan_seconds
+           << ", \"cavity_cells\": " << x.cavity_cells << ", \"cavity_made\": " << x.cavity_made
+           << ", \"cavity_front_regions\": " << x.cavity_front_regions << ", \"seconds\": {\"plan\": " << x.plan_seconds
            << ", \"conform\": " << x.conform_seconds << ", \"label\": " << x.label_seconds << ", \"mesh\": " << x.mesh_seconds << "}}";
       }
       js << "]}";
@@ -547,6 +554,10 @@ int main(int argc, char** argv) {
       } else if (s == "--acute-guard") {
         a.acute_guard = real(value());
         if (!(a.acute_guard >= 0 && a.acute_guard <= 100)) throw std::invalid_argument("--acute-guard must be in [0, 100]");
+      } else if (s == "--cavity-fill") {
+        const std::string v = value();
+        if (v != "insertion" && v != "front") throw std::invalid_argument("--cavity-fill must be insertion or front");
+        a.cavity_fill = v == "front" ? gsse::refinement::cavity_fill::front : gsse::refinement::cavity_fill::insertion;
       } else if (s == "--sliver-angle") {
         a.sliver_angle = real(value());
         if (!(a.sliver_angle >= 0 && a.sliver_angle < 30)) throw std::invalid_argument("--sliver-angle must be in [0, 30)");

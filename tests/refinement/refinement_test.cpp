@@ -668,10 +668,12 @@ std::vector<std::vector<std::array<vertex_id, D + 1>>> canonical(refinement::cel
 }
 
 /// Meshes p, resumes its boundary with `added` points and the faces `split` split, and checks
-/// that re-meshing only the cavities gives exactly the cells a meshing from scratch gives.
+/// that re-meshing only the cavities gives exactly the cells a meshing from scratch gives, by
+/// insertion (3D: in every segment, unless `inner`: a facet inside a segment leaves that segment
+/// to the front mesher) and by the front mesher.
 template <std::size_t D>
 void cavities_match(const plc<D>& p, double size, const std::vector<point<D>>& added, std::vector<std::size_t> split,
-                    std::size_t split_source = no_vertex) {
+                    std::size_t split_source = no_vertex, bool inner = false) {
   conformer::options co;
   co.size = size;
   const auto b = conformer::conform(p, {}, co);
@@ -696,13 +698,26 @@ void cavities_match(const plc<D>& p, double size, const std::vector<point<D>>& a
     const auto again = conformer::label_refined(c, p, b, odd, 2);
     BOOST_TEST((again.side == lc.side), p.source << ": a mixed source was not labelled again");
   }
-  std::size_t removed = 0, made = 0, before = 0;
+  std::size_t removed = 0, made = 0, before = 0, fronts = 0;
   for (const auto& r : cells) before += r.size();
-  BOOST_REQUIRE(refinement::remesh_cavities(b, c, l, lc, cells, 2, &removed, &made));
+  auto by_front = cells;
+  BOOST_REQUIRE(refinement::remesh_cavities<D>(b, c, l, lc, cells, 2, &removed, &made, nullptr, nullptr, nullptr,
+                                            refinement::default_batch_faces, refinement::cavity_fill::insertion, &fronts));
   BOOST_TEST(removed > 0u);
   BOOST_TEST(removed < before / 2, p.source << ": " << removed << " of " << before << " cells re-meshed");
+  // 3D: insertion filled every segment (the conformer's new boundary faces where it split
+  // faces, the new free points inside), none was left to the front mesher; 2D always uses it
+  if (D == 3 && !inner)
+    BOOST_TEST(fronts == 0u, p.source << ": " << fronts << " segments filled by the front mesher, not by insertion");
+  else
+    BOOST_TEST(fronts > 0u);
   const auto full = pl::mesh_segments<D>::wrap(c, lc, 1);
   BOOST_TEST((canonical<D>(cells) == canonical<D>(full)), p.source << ": the cavities' cells differ from a full meshing");
+  // the front mesher from each cavity's boundary: the same cells
+  BOOST_REQUIRE(refinement::remesh_cavities<D>(b, c, l, lc, by_front, 2, nullptr, nullptr, nullptr, nullptr, nullptr,
+                                            refinement::default_batch_faces, refinement::cavity_fill::front, &fronts));
+  BOOST_TEST(fronts > 0u);
+  BOOST_TEST((canonical<D>(by_front) == canonical<D>(full)), p.source << ": the front mesher's cavities differ from a full meshing");
   // two rounds more with the circumballs kept from round to round (as refine() keeps them): a
   // kept ball that were wrong would leave a cell that should have gone
   refinement::balls_by_region<D> balls(cells.size());
@@ -808,7 +823,7 @@ BOOST_AUTO_TEST_CASE(cavities_on_both_sides_of_a_facet_inside_a_segment) {
       for (auto& r : p.regions) r.at = turn(r.at);
     }
     // points whose balls reach across the baffle (just above and below it), and one apart
-    cavities_match<3>(p, 0.15, {at({0.47, 0.52, 0.53}), at({0.61, 0.38, 0.46}), at({0.2, 0.8, 0.15})}, {0}, p.facets.size() - 1);
+    cavities_match<3>(p, 0.15, {at({0.47, 0.52, 0.53}), at({0.61, 0.38, 0.46}), at({0.2, 0.8, 0.15})}, {0}, p.facets.size() - 1, true);
     pl::report r;
     auto o = quality_options(1.414, 2, 0.15);
     o.graded = false;

@@ -528,6 +528,7 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
     // size alone: no shape bound and no sliver rule, only the size rule below
     ro.bound = size_alone ? std::numeric_limits<double>::infinity() : o.quality_bound;
     ro.sliver_angle = size_alone ? 0.0 : o.sliver_angle;
+    ro.fill = o.cavity_fill;
     ro.acute_guard = o.acute_guard;
     ro.max_rounds = o.quality_rounds;
     ro.threads = o.threads;

@@ -28,6 +28,7 @@
 #include "gsse/sizing/box_tree.hpp"
 #include "gsse/traversal/for_each.hpp"
 #include "gsse/traversal/parallel_sort.hpp"
+#include "cavity_insertion.hpp"
 
 namespace gsse::refinement {
 
@@ -1242,7 +1243,7 @@ template <std::size_t D>
 bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary<D>& b1, const conformer::labelling& l0,
                      const conformer::labelling& l1, cells_by_region<D>& cells, unsigned threads, std::size_t* removed_count,
                      std::size_t* made_count, std::vector<std::vector<char>>* flags, balls_by_region<D>* balls,
-                     runs_by_region<D>* kept_runs, std::size_t batch_faces) {
+                     runs_by_region<D>* kept_runs, std::size_t batch_faces, cavity_fill fill, std::size_t* front_regions) {
   const auto& p = b1.points;
   const std::size_t n0 = b0.points.size();
   if (p.size() < n0 || l0.regions.size() != l1.regions.size() || cells.size() != l1.regions.size()) return false;
@@ -1323,6 +1324,22 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   }
   std::sort(gone.begin(), gone.end());
   if (p.size() == n0 && gone_faces.empty() && came_faces.empty()) return true;
+  // 3D: the cavities are filled by inserting the new points (cavity_insertion.hpp) where the
+  // sources of the faces line up (a gone face's facet is the facet its new faces came from).
+  // The search then lists every new point in each dead cell's ball: where each insertion starts
+  const bool inserting = D == 3 && fill == cavity_fill::insertion && aligned;
+  std::vector<std::pair<packed_key<D>, std::uint32_t>> gone_source;  // (gone face's key, facet), sorted
+  std::vector<std::pair<vertex_id, std::uint32_t>> new_on;            // (new point, facet of a new face through it), sorted
+  std::vector<char> on_came(p.size() - n0, 0);                        // new point on a new boundary face
+  if (inserting) {
+    for (std::size_t f : gone_faces) gone_source.push_back({pack<D>(key_of<D>(b0.faces[f])), b0.face_source[f]});
+    std::sort(gone_source.begin(), gone_source.end());
+    for (std::size_t f : came_faces)
+      for (auto v : b1.faces[f])
+        if (v >= n0) new_on.push_back({v, b1.face_source[f]}), on_came[v - n0] = 1;
+    std::sort(new_on.begin(), new_on.end());
+    new_on.erase(std::unique(new_on.begin(), new_on.end()), new_on.end());
+  }
   if (flags && flags->size() != cells.size()) return false;
   if (balls && balls->size() != cells.size()) return false;
   // the runs' boxes: the caller's, kept from earlier rounds, or this call's own
@@ -1350,6 +1367,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   // and each chunk's dead cells, ascending: the steps below read those, not every cell (a late
   // round kills a few hundred of a graded run's million cells)
   std::vector<std::vector<std::uint32_t>> dead_in(chunks.size());
+  std::vector<std::vector<std::pair<std::uint32_t, vertex_id>>> hits_in(chunks.size());  // (dead cell, new point in its ball)
   // a cell's circumball, computed the first time it is needed and kept (balls) across rounds
   auto ball_of = [&](std::size_t r, std::size_t i, cell_ball<D>& own) -> cell_ball<D>& {
     cell_ball<D>& ball = balls ? (*balls)[r][i] : own;
@@ -1363,6 +1381,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   };
   for_each(execution::par(threads), chunks, [&](const chunk& ch) {
     auto& died = dead_in[static_cast<std::size_t>(&ch - chunks.data())];
+    auto& hits = hits_in[static_cast<std::size_t>(&ch - chunks.data())];
     // runs of cell_run cells (spatial_order makes them lie together): a run with no flat cell and
     // neither a new point nor a vertex of a gone face in the box of its balls has no dead cell
     constexpr std::size_t run = cell_run;  // chunks start at multiples of it
@@ -1414,18 +1433,49 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         if (marked >= D)
           for (const auto& g : faces_into<D>(c))
             if (std::binary_search(gone.begin(), gone.end(), pack<D>(key_of<D>(g)))) out = 1;
-        if (out || p.size() == n0) continue;
+        // (3D insertion) the new points in the ball of a cell that dies anyway, by exact tests
+        // alone: all of them for a flat cell, those on new boundary faces for one on a gone face
+        // (where their insertions start: a free point's cavity has cells of its own)
+        auto exact_hits = [&](bool boundary_only) {
+          if constexpr (D == 3) {
+            bool oriented = false;
+            auto test = [&](vertex_id y) {
+              if (boundary_only && !on_came[y - n0]) return false;
+              if (!oriented) {
+                if (geometry::orient3d(p[c[0]], p[c[1]], p[c[2]], p[c[3]]) < 0) std::swap(c[0], c[1]);
+                oriented = true;
+              }
+              if (in_ball(p, c, y)) hits.push_back({static_cast<std::uint32_t>(i), y});
+              return false;
+            };
+            if (many)
+              bins.any(R.lo, R.hi, test);
+            else
+              for (vertex_id y : near) test(y);
+          }
+        };
+        const bool on_gone_face = out;
+        if ((out && !inserting) || p.size() == n0) continue;
         cell_ball<D> own;
         const auto& ball = ball_of(ch.region, i, own);
         if (ball.pad == cell_ball<D>::flat) {
           out = 1;  // flat in double precision: re-meshed, which is always safe
+          if (inserting) exact_hits(on_gone_face);
           continue;
         }
         const point<D>& at = ball.at;
         const double pad = ball.pad;
+        // well inside: at least 1e-6 of the radius inside the padded ball shrunk by twice its
+        // padding (the exact test's answer, perturbation or not: docs/design-decisions.md, "A
+        // double test may skip an exact one only where its error is bounded")
+        double m = 0;
+        for (double x : at) m = std::max(m, std::abs(x));
+        const double inner = std::max(0.0, pad * (1 - 1e-6) - 256 * std::numeric_limits<double>::epsilon() * (m + pad));
         bool oriented = false;
         auto holds = [&](vertex_id y) {
-          if (squared_distance(p[y], at) > pad * pad) return false;
+          const double d2 = squared_distance(p[y], at);
+          if (d2 > pad * pad) return false;
+          if (d2 < inner * inner) return true;
           if (!oriented) {
             int o;
             if constexpr (D == 2)
@@ -1437,7 +1487,17 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
           }
           return in_ball(p, c, y);
         };
-        if (many) {
+        if (inserting) {  // every new point in the ball
+          auto note = [&](vertex_id y) {
+            if (on_gone_face && !on_came[y - n0]) return false;
+            if (holds(y)) out = 1, hits.push_back({static_cast<std::uint32_t>(i), y});
+            return false;
+          };
+          if (many)
+            bins.any_in_ball(at, pad, note);
+          else
+            for (vertex_id y : near) note(y);
+        } else if (many) {
           out = bins.any_in_ball(at, pad, holds);
         } else {
           out = 0;
@@ -1453,9 +1513,13 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     }
   }, [&](const chunk& ch) { return static_cast<double>(ch.count); });
   std::vector<std::vector<std::uint32_t>> dead_at(cells.size());  // per region, ascending
-  for (std::size_t k = 0; k < chunks.size(); ++k)
+  std::vector<std::vector<std::pair<std::uint32_t, vertex_id>>> hits_at(cells.size());  // per region, by cell
+  for (std::size_t k = 0; k < chunks.size(); ++k) {
     dead_at[chunks[k].region].insert(dead_at[chunks[k].region].end(), dead_in[k].begin(), dead_in[k].end());
+    hits_at[chunks[k].region].insert(hits_at[chunks[k].region].end(), hits_in[k].begin(), hits_in[k].end());
+  }
   std::vector<std::vector<std::uint32_t>>().swap(dead_in);
+  std::vector<std::vector<std::pair<std::uint32_t, vertex_id>>>().swap(hits_in);
   // 2. each region's cavity boundary: the faces of its dead cells met once, less the gone faces,
   // plus the new boundary faces on its side
   // the points a cavity can use, by place: the vertices of the dead cells (the cavity's boundary
@@ -1478,12 +1542,23 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     std::size_t region;
     std::vector<face_t<D>> front;
     std::vector<std::pair<point<D>, point<D>>> boxes;  // the bounding box of each piece's front
+    std::optional<std::vector<cell_t<D>>> inserted;    // the cells, where insertion filled the region
   };
   // per region, in parallel: its tasks, or a failure (the cavities do not close)
   struct region_tasks {
     std::vector<task> tasks;
     std::size_t removed = 0;
     bool ok = true;
+    // for insertion: each dead cell's face i (place 4 k + i) across from the dead cell's face that
+    // meets it, or none; the dead cells in connected pieces (cavities), each cell's place in its
+    // piece; the new boundary faces on the region's side, facing into it, and their new points
+    bool insertable = false;
+    std::vector<std::uint32_t> mate, place;
+    std::vector<std::vector<std::uint32_t>> components;
+    std::vector<face_t<D>> came;
+    std::vector<vertex_id> came_points;
+    std::vector<std::pair<packed_key<D>, face_t<D>>> met;  // (key, face facing into the dead cell)
+    std::vector<char> twice;                               // per face of met: met twice (inside)
   };
   std::vector<region_tasks> by_region(cells.size());
   // the boundary faces with one region on both sides (a facet inside a segment), by region, before
@@ -1508,49 +1583,12 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       for (std::size_t j = i + 1; j < D; ++j) n += f[i] > f[j];
     return n % 2;
   };
-  for_each(execution::par(threads), regions, [&](std::size_t r) {
+  // a region's front (the faces of its dead cells met once, less the gone faces, plus the new
+  // boundary faces on its side) in connected pieces, batched into tasks for the front mesher
+  auto make_front = [&](std::size_t r) {
     auto& W = by_region[r];
-    // the faces of the dead cells, by key: a face met twice (by two dead cells, facing opposite
-    // ways) is inside the cavity, once is on its boundary
-    std::vector<std::pair<packed_key<D>, face_t<D>>> met;  // (key, face facing into the dead cell)
-    for (const auto i : dead_at[r]) {
-      ++W.removed;
-      for (const auto& g : faces_into<D>(cells[r][i])) met.push_back({pack<D>(key_of<D>(g)), g});
-    }
-    // faces paired by key in an open-addressing table (sorting every face by key was most of this
-    // step); those met once are sorted by key: the cavity's boundary
-    std::size_t cap = 16;
-    while (cap < 2 * met.size()) cap *= 2;
-    constexpr std::uint32_t none = ~std::uint32_t{0};
-    std::vector<std::uint32_t> table(cap, none);
-    std::vector<char> twice(met.size(), 0);
-    for (std::uint32_t i = 0; i < met.size(); ++i) {
-      const packed_key<D> k = met[i].first;
-      std::uint64_t h = static_cast<std::uint64_t>(k);
-      if constexpr (D == 3) h ^= static_cast<std::uint64_t>(k >> 64) * 0xC2B2AE3D27D4EB4Full;
-      std::size_t at = static_cast<std::size_t>((h * 0x9E3779B97F4A7C15ull) >> 20) & (cap - 1);
-      for (;; at = (at + 1) & (cap - 1)) {
-        const std::uint32_t j = table[at];
-        if (j == none) {
-          table[at] = i;
-          break;
-        }
-        if (met[j].first != k) continue;
-        if (!inner0[r].empty() && std::binary_search(inner0[r].begin(), inner0[r].end(), k)) {
-          if (parity(met[j].second) == parity(met[i].second)) {
-            W.ok = false;  // two dead cells on one side of a face
-            return;
-          }
-          break;  // both sides stay on the cavity's boundary
-        }
-        if (twice[j] || parity(met[j].second) == parity(met[i].second)) {
-          W.ok = false;  // two dead cells on one side of a face
-          return;
-        }
-        twice[j] = twice[i] = 1;
-        break;
-      }
-    }
+    const auto met = std::move(W.met);
+    const auto twice = std::move(W.twice);
     std::vector<std::pair<packed_key<D>, face_t<D>>> once;
     for (std::uint32_t i = 0; i < met.size(); ++i)
       if (!twice[i]) once.push_back(met[i]);
@@ -1607,11 +1645,247 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     for (std::size_t i = 0; i < pieces.size(); ++i) order[i] = {morton_code<D>(0.5 * (pieces[i].lo + pieces[i].hi), all_lo, all_hi, 10), i};
     std::sort(order.begin(), order.end());
     for (auto [m, i] : order) {
-      if (W.tasks.empty() || W.tasks.back().front.size() >= batch_faces) W.tasks.push_back({r, {}, {}});
+      if (W.tasks.empty() || W.tasks.back().front.size() >= batch_faces) W.tasks.push_back({r, {}, {}, {}});
       W.tasks.back().front.insert(W.tasks.back().front.end(), pieces[i].faces.begin(), pieces[i].faces.end());
       W.tasks.back().boxes.push_back({pieces[i].lo, pieces[i].hi});
     }
+  };
+  for_each(execution::par(threads), regions, [&](std::size_t r) {
+    auto& W = by_region[r];
+    // the faces of the dead cells, by key: a face met twice (by two dead cells, facing opposite
+    // ways) is inside the cavity, once is on its boundary
+    std::vector<std::pair<packed_key<D>, face_t<D>>> met;  // (key, face facing into the dead cell)
+    for (const auto i : dead_at[r]) {
+      ++W.removed;
+      for (const auto& g : faces_into<D>(cells[r][i])) met.push_back({pack<D>(key_of<D>(g)), g});
+    }
+    // faces paired by key in an open-addressing table (sorting every face by key was most of this
+    // step); those met once are sorted by key: the cavity's boundary
+    std::size_t cap = 16;
+    while (cap < 2 * met.size()) cap *= 2;
+    constexpr std::uint32_t none = ~std::uint32_t{0};
+    std::vector<std::uint32_t> table(cap, none);
+    std::vector<char> twice(met.size(), 0);
+    if (inserting) W.mate.assign(met.size(), none);
+    for (std::uint32_t i = 0; i < met.size(); ++i) {
+      const packed_key<D> k = met[i].first;
+      std::uint64_t h = static_cast<std::uint64_t>(k);
+      if constexpr (D == 3) h ^= static_cast<std::uint64_t>(k >> 64) * 0xC2B2AE3D27D4EB4Full;
+      std::size_t at = static_cast<std::size_t>((h * 0x9E3779B97F4A7C15ull) >> 20) & (cap - 1);
+      for (;; at = (at + 1) & (cap - 1)) {
+        const std::uint32_t j = table[at];
+        if (j == none) {
+          table[at] = i;
+          break;
+        }
+        if (met[j].first != k) continue;
+        if (!inner0[r].empty() && std::binary_search(inner0[r].begin(), inner0[r].end(), k)) {
+          if (parity(met[j].second) == parity(met[i].second)) {
+            W.ok = false;  // two dead cells on one side of a face
+            return;
+          }
+          break;  // both sides stay on the cavity's boundary
+        }
+        if (twice[j] || parity(met[j].second) == parity(met[i].second)) {
+          W.ok = false;  // two dead cells on one side of a face
+          return;
+        }
+        twice[j] = twice[i] = 1;
+        if (inserting) W.mate[i] = j, W.mate[j] = i;
+        break;
+      }
+    }
+    if (inserting && inner0[r].empty() && inner1[r].empty()) {  // the cavities: dead cells meeting at faces
+      W.insertable = true;
+      const auto n = static_cast<std::uint32_t>(dead_at[r].size());
+      union_find<std::uint32_t> uf(n);
+      for (std::uint32_t i = 0; i < met.size(); ++i)
+        if (W.mate[i] != none && W.mate[i] > i) uf.unite(i / (D + 1), W.mate[i] / (D + 1));
+      std::vector<std::uint32_t> numbered(n, none);  // by root: the component's number
+      W.place.assign(n, 0);
+      for (std::uint32_t k = 0; k < n; ++k) {
+        std::uint32_t& at = numbered[uf.find(k)];
+        if (at == none) at = static_cast<std::uint32_t>(W.components.size()), W.components.emplace_back();
+        W.place[k] = static_cast<std::uint32_t>(W.components[at].size());
+        W.components[at].push_back(k);
+      }
+    }
+    if (W.insertable) {  // the new boundary faces on its side, facing into it, and their new points
+      for (std::size_t f : came_faces)
+        for (int side = 0; side < 2; ++side)
+          if (l1.side[f][static_cast<std::size_t>(side)] == static_cast<int>(r)) {
+            auto F = b1.faces[f];
+            if (side == 1) std::swap(F[0], F[1]);
+            W.came.push_back(F);
+            for (auto v : F)
+              if (v >= n0) W.came_points.push_back(v);
+          }
+      std::sort(W.came_points.begin(), W.came_points.end());
+      W.came_points.erase(std::unique(W.came_points.begin(), W.came_points.end()), W.came_points.end());
+    }
+    W.met = std::move(met);
+    W.twice = std::move(twice);
+    if (!W.insertable) make_front(r);
   }, [&](std::size_t r) { return static_cast<double>(cells[r].size()); });
+  for (const auto& W : by_region)
+    if (!W.ok) return false;
+  std::vector<std::size_t> unfilled;  // the regions insertion did not fill
+  // 3. (3D) insertion: each cavity (connected dead cells of a region) takes the new points that lie
+  // in it, and the new points on the region's new boundary faces that its balls hold, one at a
+  // time (cavity_insertion.hpp). A region whose cavities do not end with exactly the new boundary
+  // faces the conformer made on its side, or where any insertion of a point inside failed, goes
+  // to the front mesher below
+  if constexpr (D == 3) {
+    if (inserting) {
+      struct job {
+        std::size_t region, component;
+      };
+      std::vector<job> jobs;
+      for (std::size_t r = 0; r < cells.size(); ++r)
+        if (by_region[r].insertable)
+          for (std::size_t k = 0; k < by_region[r].components.size(); ++k) jobs.push_back({r, k});
+      struct result {
+        std::vector<cell_t<D>> cells;
+        std::vector<face_t<D>> walls;  // the droppable walls left: new boundary faces
+        bool ok = true;
+      };
+      std::vector<result> results(jobs.size());
+      for_each(execution::par(threads), jobs, [&](const job& jb) {
+        auto& out = results[static_cast<std::size_t>(&jb - jobs.data())];
+        const auto& W = by_region[jb.region];
+        const auto& dr = dead_at[jb.region];
+        const auto& K = W.components[jb.component];
+        std::vector<insertion::cell> cs(K.size());
+        std::vector<std::array<std::int32_t, 4>> nb(K.size());
+        for (std::size_t x = 0; x < K.size(); ++x) {
+          const auto k = K[x];
+          cs[x] = cells[jb.region][dr[k]];
+          if (geometry::orient3d(p[cs[x][0]], p[cs[x][1]], p[cs[x][2]], p[cs[x][3]]) <= 0) {
+            out.ok = false;
+            return;
+          }
+          for (int i = 0; i < 4; ++i) {
+            const std::uint32_t m = W.mate[k * 4 + static_cast<std::uint32_t>(i)];
+            std::int32_t& n = nb[x][static_cast<std::size_t>(i)];
+            if (m != ~std::uint32_t{0}) {
+              n = static_cast<std::int32_t>(W.place[m / 4]);
+            } else {
+              const auto key = pack<D>(key_of<D>(insertion::face_of(cs[x], i)));
+              const auto it = std::lower_bound(gone_source.begin(), gone_source.end(), std::pair{key, std::uint32_t{0}});
+              n = it != gone_source.end() && it->first == key ? insertion::droppable(it->second) : insertion::fixed;
+            }
+          }
+        }
+        insertion::cavity cav(std::span<const point<D>>(p), cs, std::move(nb));
+        // the points: those on the region's new boundary faces first (kind 0), then free ones
+        // (kind 1), each with the cells whose balls held it (walks start there), by id
+        std::vector<std::pair<std::uint64_t, std::uint32_t>> todo;  // ((kind, point), cell)
+        const auto& hr = hits_at[jb.region];
+        auto it = hr.begin();
+        for (std::size_t x = 0; x < K.size(); ++x) {  // K ascends, and so do its cells' indices
+          const std::uint32_t i = dr[K[x]];
+          it = std::lower_bound(it, hr.end(), std::pair{i, vertex_id{0}});
+          for (; it != hr.end() && it->first == i; ++it) {
+            const vertex_id y = it->second;
+            if (!on_came[y - n0])
+              todo.push_back({(std::uint64_t{1} << 32) | y, static_cast<std::uint32_t>(x)});
+            else if (std::binary_search(W.came_points.begin(), W.came_points.end(), y))
+              todo.push_back({y, static_cast<std::uint32_t>(x)});
+          }
+        }
+        std::sort(todo.begin(), todo.end());
+        std::vector<std::uint32_t> hints(todo.size());
+        for (std::size_t k = 0; k < todo.size(); ++k) hints[k] = todo[k].second;
+        std::vector<std::pair<std::size_t, std::size_t>> pending;  // each point's run of todo
+        for (std::size_t a = 0, e = 0; a < todo.size(); a = e) {
+          for (e = a; e < todo.size() && todo[e].first == todo[a].first; ++e) {
+          }
+          pending.push_back({a, e});
+        }
+        // a point may wait for another: one on a facet whose balls meet a face another point
+        // on a neighbouring facet removes. Passes until one inserts nothing
+        std::vector<std::pair<std::size_t, std::size_t>> later;
+        for (bool progress = true; progress && !pending.empty();) {
+          progress = false;
+          later.clear();
+          for (const auto& [a, e] : pending) {
+            const auto y = static_cast<vertex_id>(todo[a].first);
+            const bool free = todo[a].first >> 32;
+            if (cav.insert(y, std::span<const std::uint32_t>(hints).subspan(a, e - a), free,
+                           [&](std::uint32_t s) { return std::binary_search(new_on.begin(), new_on.end(), std::pair{y, s}); }))
+              progress = true;
+            else if (!cav.outside)  // a free point no cell here holds lies in another segment
+              later.push_back({a, e});
+          }
+          std::swap(pending, later);
+        }
+        // a free point left fails the cavity; a point on a new boundary face whose balls this
+        // cavity holds may lie on another's side (the region's walls tell)
+        for (const auto& [a, e] : pending)
+          if (todo[a].first >> 32) {
+            out.ok = false;
+            return;
+          }
+        out.cells = cav.cells();
+        out.walls = cav.droppable_walls();
+      }, [&](const job& jb) { return static_cast<double>(by_region[jb.region].components[jb.component].size()); });
+      // each region: every cavity filled, and the walls left exactly the new boundary faces
+      auto oriented = [&](const face_t<D>& f) { return std::pair{pack<D>(key_of<D>(f)), parity(f)}; };
+      std::vector<char> filled(cells.size(), 0);
+      std::vector<std::pair<std::size_t, std::size_t>> jobs_of(cells.size(), {0, 0});
+      for (std::size_t r = 0, j = 0; r < cells.size(); ++r) {
+        const auto& W = by_region[r];
+        if (!W.insertable) continue;
+        bool good = true;
+        std::vector<std::pair<packed_key<D>, int>> left, want;
+        const std::size_t first = j;
+        for (; j < jobs.size() && jobs[j].region == r; ++j) {
+          good = good && results[j].ok;
+          for (const auto& f : results[j].walls) left.push_back(oriented(f));
+        }
+        jobs_of[r] = {first, j};
+        for (const auto& f : W.came) want.push_back(oriented(f));
+        std::sort(left.begin(), left.end());
+        std::sort(want.begin(), want.end());
+        filled[r] = good && left == want;
+      }
+      // every free new point in a cell of a filled region, or held by a ball of a region the
+      // front mesher fills (its own, as far as this round can tell): else that point was left out
+      // (all its cells' balls were only tested for points on new faces) and the front mesher
+      // fills every region
+      std::vector<char> placed(p.size() - n0, 0);
+      for (std::size_t r = 0; r < cells.size(); ++r) {
+        if (filled[r]) {
+          for (std::size_t k = jobs_of[r].first; k < jobs_of[r].second; ++k)
+            for (const auto& c : results[k].cells)
+              for (auto v : c)
+                if (v >= n0) placed[v - n0] = 1;
+        } else {
+          for (const auto& [c, y] : hits_at[r]) placed[y - n0] = 1;
+        }
+      }
+      bool all_placed = true;
+      for (std::size_t y = 0; y < placed.size() && all_placed; ++y) all_placed = placed[y] || on_came[y];
+      for (std::size_t r = 0; r < cells.size(); ++r) {
+        auto& W = by_region[r];
+        if (!W.insertable) continue;
+        if (!filled[r] || !all_placed) {
+          unfilled.push_back(r);
+          continue;
+        }
+        task t{r, {}, {}, std::vector<cell_t<D>>{}};
+        for (std::size_t k = jobs_of[r].first; k < jobs_of[r].second; ++k)
+          t.inserted->insert(t.inserted->end(), results[k].cells.begin(), results[k].cells.end());
+        W.tasks.clear();
+        W.tasks.push_back(std::move(t));
+      }
+    }
+  }
+  {  // the regions insertion did not fill: their fronts, for the front mesher
+    for_each(execution::par(threads), unfilled, make_front, [&](std::size_t r) { return static_cast<double>(by_region[r].met.size()); });
+    for (const auto& W : by_region)
+      if (!W.ok) return false;
+  }
   std::vector<task> tasks;
   std::vector<std::size_t> region_first(cells.size() + 1, 0);
   std::size_t removed = 0;
@@ -1629,8 +1903,11 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   std::vector<char> ok(tasks.size(), 1);
   std::vector<std::size_t> order(tasks.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
+  for (std::size_t t = 0; t < tasks.size(); ++t)
+    if (tasks[t].inserted) made[t] = std::move(*tasks[t].inserted);
   for_each(execution::par(threads), order, [&](std::size_t t) {
     const auto& tk = tasks[t];
+    if (tk.inserted) return;
     // the points a cavity's cells can use lie in the box of its front (its vertices, the new
     // points inside it, an old vertex all of whose cells died): a grid over those fits the local
     // spacing, where the grid over all points is crowded wherever the refinement went
@@ -1790,6 +2067,15 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   }, [&](std::size_t r) { return static_cast<double>(cells[r].size()); });
   const std::size_t count = std::accumulate(added.begin(), added.end(), std::size_t{0});
   if (removed_count) *removed_count = removed;
+  if (front_regions) {
+    *front_regions = 0;
+    for (std::size_t r = 0; r < cells.size(); ++r)
+      for (std::size_t t = region_first[r]; t < region_first[r + 1]; ++t)
+        if (!tasks[t].inserted) {
+          ++*front_regions;
+          break;
+        }
+  }
   if (made_count) *made_count = count;
   return true;
 }
@@ -1935,10 +2221,11 @@ domain<D> refine(const plc<D>& p, conformer::boundary<D>& b, conformer::labellin
       st.label_seconds += rec.label_seconds;
       // remesh_cavities changes cells and todo only when it succeeds, and a full meshing that
       // throws assigns nothing: the last good mesh survives a failed round without a copy
-      std::size_t removed = 0, made = 0;
-      if (remesh_cavities(b, b2, l, l2, cells, o.threads, &removed, &made, &todo, keep_balls ? &balls : nullptr, &runs)) {
+      std::size_t removed = 0, made = 0, front_regions = 0;
+      if (remesh_cavities(b, b2, l, l2, cells, o.threads, &removed, &made, &todo, keep_balls ? &balls : nullptr, &runs, default_batch_faces, o.fill, &front_regions)) {
         st.cavity_cells += removed, st.cavity_made += made;
         rec.cavity_cells = removed, rec.cavity_made = made;
+        st.cavity_front_regions += front_regions, rec.cavity_front_regions = front_regions;
       } else {
         cells = mesh.wrap(b2, l2);
         spatial_order(cells, b2.points, o.threads);
@@ -1981,10 +2268,12 @@ template std::vector<cavity_piece<2>> cavity_pieces<2>(const std::vector<point<2
 template std::vector<cavity_piece<3>> cavity_pieces<3>(const std::vector<point<3>>&, const std::vector<std::array<vertex_id, 3>>&);
 template bool remesh_cavities<2>(const conformer::boundary<2>&, const conformer::boundary<2>&, const conformer::labelling&,
                                  const conformer::labelling&, cells_by_region<2>&, unsigned, std::size_t*, std::size_t*,
-                                 std::vector<std::vector<char>>*, balls_by_region<2>*, runs_by_region<2>*, std::size_t);
+                                 std::vector<std::vector<char>>*, balls_by_region<2>*, runs_by_region<2>*, std::size_t,
+                                 cavity_fill, std::size_t*);
 template bool remesh_cavities<3>(const conformer::boundary<3>&, const conformer::boundary<3>&, const conformer::labelling&,
                                  const conformer::labelling&, cells_by_region<3>&, unsigned, std::size_t*, std::size_t*,
-                                 std::vector<std::vector<char>>*, balls_by_region<3>*, runs_by_region<3>*, std::size_t);
+                                 std::vector<std::vector<char>>*, balls_by_region<3>*, runs_by_region<3>*, std::size_t,
+                                 cavity_fill, std::size_t*);
 template domain<2> refine<2>(const plc<2>&, conformer::boundary<2>&, conformer::labelling&, cells_by_region<2>, const conformer::options&,
                              const options&, const meshers<2>&, stats&, conformer::session<2>*);
 template domain<3> refine<3>(const plc<3>&, conformer::boundary<3>&, conformer::labelling&, cells_by_region<3>, const conformer::options&,

@@ -43,6 +43,7 @@ struct options {
   bool quality = false;
   double quality_bound = 0;
   double sliver_angle = refinement::options{}.sliver_angle;  // 3D, with quality: see refinement::options
+  refinement::cavity_fill cavity_fill = refinement::cavity_fill::insertion;  // 3D rounds: see refinement::cavity_fill
   double acute_guard = refinement::options{}.acute_guard;  // 3D, with quality: see refinement::options
   std::size_t quality_rounds = 0;  // with quality: the round cap (0: refinement::options default)
   // a size (`size` or a graded field) without `quality`: rounds of the refinement for size

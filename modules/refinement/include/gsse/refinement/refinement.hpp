@@ -54,6 +54,14 @@ struct vertex_sizes {
   std::vector<char> exact;
 };
 
+/// How a round re-fills its cavities (3D; 2D always uses the front mesher). insertion: each
+/// segment's cavities by inserting the round's new points into its dead cells one at a time
+/// (Bowyer and Watson; a new point on a facet removes the faces it splits), the front mesher only
+/// for a segment where that does not end with the boundary the conformer made; front: the front
+/// mesher from each cavity's boundary. The cells are the same (the perturbed Delaunay
+/// triangulation is unique); their order in the mesh is not.
+enum class cavity_fill { insertion, front };
+
 struct options {
   // 3D: the radius-edge bound (circumradius / shortest edge), 2.0 by default, at least
   // min_ratio3; 2D: the smallest angle in degrees, 20.7 by default, at most max_angle2
@@ -89,6 +97,7 @@ struct options {
   // (spacing_floor; stats::below_floor). 0: none
   double acute_guard = 1;
   unsigned threads = 1;
+  cavity_fill fill = cavity_fill::insertion;  // how rounds re-fill their cavities (cavity_fill)
   std::function<void(const std::string&)> progress;  // one line per round, may be empty
   // called once, between rounds, when the elements above the bound have grown in `growth_rounds`
   // of the last `growth_rounds` + 2 rounds (the count of bad elements and the rounds so far;
@@ -125,12 +134,15 @@ struct stats {
   // cells deleted and made by the rounds' cavity re-meshing; rounds meshed from scratch instead
   // (a cavity that did not close or fill its volume: a safety net, 0 on every input measured)
   std::size_t cavity_cells = 0, cavity_made = 0, full_remeshes = 0;
+  // segments whose cavities the front mesher filled, a round's each counted (options::fill
+  // insertion: where insertion did not give the conformer's boundary)
+  std::size_t cavity_front_regions = 0;
   // each round, in order: what its plan found and chose, and its steps' wall seconds (the sums
   // above but for the plan, whose total also holds the last plan, the one no round follows). A
   // run's tail of small rounds shows here, without instrumenting the code (--stats
   // quality.refinement.per_round)
   struct round_record {
-    std::size_t bad = 0, inserted = 0, split_requests = 0, cavity_cells = 0, cavity_made = 0;
+    std::size_t bad = 0, inserted = 0, split_requests = 0, cavity_cells = 0, cavity_made = 0, cavity_front_regions = 0;
     double plan_seconds = 0, conform_seconds = 0, label_seconds = 0, mesh_seconds = 0;
   };
   std::vector<round_record> per_round;
@@ -254,13 +266,15 @@ std::vector<cavity_piece<D>> cavity_pieces(const std::vector<point<D>>& p, const
 /// one) in `cells`; false (and `cells` unchanged) where a cavity does not close or fill its
 /// volume. The cavity boundary's pieces (cavity_pieces) go to the front mesher in tasks of about
 /// `batch_faces` faces (a test lowers it to put every piece in a task of its own).
+/// `fill` (cavity_fill, above). `front_regions` (optional): the regions the front mesher filled.
 inline constexpr std::size_t default_batch_faces = 4096;
 template <std::size_t D>
 bool remesh_cavities(const conformer::boundary<D>& before, const conformer::boundary<D>& after,
                      const conformer::labelling& labels_before, const conformer::labelling& labels_after,
                      cells_by_region<D>& cells, unsigned threads, std::size_t* removed = nullptr, std::size_t* made = nullptr,
                      std::vector<std::vector<char>>* flags = nullptr, balls_by_region<D>* balls = nullptr,
-                     runs_by_region<D>* runs = nullptr, std::size_t batch_faces = default_batch_faces);
+                     runs_by_region<D>* runs = nullptr, std::size_t batch_faces = default_batch_faces,
+                     cavity_fill fill = cavity_fill::insertion, std::size_t* front_regions = nullptr);
 
 /// Refines `cells`, the mesh of boundary `b` (labelled `l`) of PLC `p`, until no element exceeds
 /// the bound except the excepted ones, or the round or point cap is reached (stats says which).
