@@ -49,9 +49,12 @@ class cavity {
   cavity(std::span<const point3> p, std::vector<cell> cells, std::vector<std::array<std::int32_t, 4>> next)
       : p_(p), c_(std::move(cells)), nb_(std::move(next)), mark_(c_.size(), 0), spare_(c_.size(), 0) {}
 
-  /// Inserts q, starting the search at cell `hint`; `on_source(s)` says whether q lies on
-  /// source s (a facet). Returns false, changing nothing, if q cannot be inserted here: no
-  /// cell holds it in its ball, or the star of its conflict region is not positive.
+  /// Inserts q. `hints`: places of cells whose balls held q when the cavity was made (the search
+  /// starts there); `free`: q is a free point, which belongs to this cavity only if a cell holds
+  /// it (else `outside` is set); `on_source(s)`: q lies on source s (a facet) and may remove its
+  /// droppable walls. Returns false, changing no cell, if q cannot be inserted here: no cell
+  /// holds it in its ball, a face of its conflict region does not see it strictly, or a face
+  /// through it meets neither another new cell nor a removed wall.
   template <class OnSource>
   bool insert(vertex_id q, std::span<const std::uint32_t> hints, bool free, OnSource&& on_source) {
     outside = false;
@@ -234,7 +237,6 @@ class cavity {
           if (is_droppable(nb_[a][static_cast<std::size_t>(i)])) out.push_back(face_of(c_[a], i));
     return out;
   }
-  std::uint32_t last() const { return last_; }
   bool outside = false;  // the last insert of a free point failed because no cell holds it
 
  private:
@@ -297,8 +299,8 @@ class cavity {
   std::vector<std::pair<face, std::uint32_t>> dropped_;
   std::vector<star_cell> made_;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> edges_;
-  std::vector<char> spare_;
-  bool walk_inside_ = false;  // the last walk ended in a cell holding its point  // a place no cell holds (in free_)
+  std::vector<char> spare_;   // per place: no cell holds it (it is in free_)
+  bool walk_inside_ = false;  // the last walk ended in a cell holding its point
   std::uint32_t last_ = 0;
 };
 
