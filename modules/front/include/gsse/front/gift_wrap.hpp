@@ -438,7 +438,15 @@ class gift_wrapper {
     // plane, outside its circumcircle: rank it all (a lower bound, 4x, sent the faces of thin
     // lenses near the hull of the benchmark cube to that scan: 20% of all visits at 1e6 points)
     const double top = 256 * diagonal_;
-    for (double h = std::min(2 * std::sqrt(pr.r2), 2 * cur_->mean_step());; h *= 2) {
+    // A strict kernel's apex does not depend on the caps scanned, so the next cap may be the
+    // smallest one holding the best-ranked vertex a scan met beyond its cap (the points of the
+    // rows it reads just outside the ball), when that is below the doubled one: where the empty
+    // balls are large and the points lie near their spheres (the tube of a torus meshed from its
+    // surface alone), the doubled cap held hundreds of points its apex's ball does not
+    const bool peek = k_.strict();
+    double next = 0;
+    for (double h = std::min(2 * std::sqrt(pr.r2), 2 * cur_->mean_step());; h = next) {
+      next = 2 * h;
       const double t = (h * h - pr.r2) / (2 * h);
       Rt = h - t;
       if (h > top || !std::isfinite(Rt)) {
@@ -454,14 +462,31 @@ class gift_wrapper {
       const double R2 = Rt * Rt;
       std::size_t visits = 0;
       // the cap's terms by value: kept in registers through the scan (push_back may alias them)
-      visit_cap(ct, Rt, n, d, [&, ct = ct, n = n, d = d, R2 = R2, f = f](vertex_id y, const coord& q) {
+      auto in_cap = [&, ct = ct, n = n, d = d, R2 = R2, f = f](vertex_id y, const coord& q) {
         ++visits;
         double d2 = 0;
         for (std::size_t a = 0; a < G; ++a) d2 += (q[a] - ct[a]) * (q[a] - ct[a]);
         if (d2 > R2 || dot(n, q) < d || in_face(f, y)) return true;
         seen_.push_back({y, K::estimate(pr, q), q});
         return true;
-      });
+      };
+      // a large cap's scan also keeps the points it meets beyond the ball, ranked below only if
+      // the cap holds no apex (the first caps of a lattice's faces nearly always hold it; the
+      // scan of a small cap keeps the plain loop)
+      beyond_.clear();
+      if (peek && h >= 4 * cur_->mean_step())
+        visit_cap(ct, Rt, n, d, [&, ct = ct, n = n, d = d, R2 = R2](vertex_id y, const coord& q) {
+          double d2 = 0;
+          for (std::size_t a = 0; a < G; ++a) d2 += (q[a] - ct[a]) * (q[a] - ct[a]);
+          if (d2 > R2) {
+            if (dot(n, q) >= d) beyond_.push_back(&q);
+            ++visits;
+            return true;
+          }
+          return in_cap(y, q);
+        });
+      else
+        visit_cap(ct, Rt, n, d, in_cap);
       stats_.visits += visits;
       // the best-ranked vertex is nearly always exactly positive; sort only when it is not
       auto by_rank = [](const seen& x, const seen& y) { return x.t < y.t || (x.t == y.t && x.id < y.id); };
@@ -484,6 +509,22 @@ class gift_wrapper {
           }
         }
         if (best != no_vertex) break;
+      }
+      // no apex in this cap: the next is the one of height ho, which holds the points ranked up
+      // to `beyond`, the best rank met beyond this cap among points clearly on the face's inner
+      // side (one just across the plane ranks finitely but is never an apex), if that is at
+      // least 0.1% above this cap (the caps still grow to `top`) and below the doubled one
+      double beyond = std::numeric_limits<double>::infinity();
+      const double clear = 1e-6 * pr.l;
+      for (const coord* q : beyond_) {
+        double above = 0;
+        for (std::size_t a = 0; a < G; ++a) above += ((*q)[a] - pr.cc[a]) * pr.n[a];
+        if (!(above > clear)) continue;
+        if (const double u = K::estimate(pr, *q); u > t && u < beyond) beyond = u;
+      }
+      if (std::isfinite(beyond)) {
+        const double ho = (beyond + std::sqrt(beyond * beyond + pr.r2)) * (1 + 1e-6);
+        if (ho > h * (1 + 1e-3) && ho < next) next = ho;
       }
     }
     // The exact choice. If the (padded) ball of the best-ranked vertex, on the positive side, lies
@@ -652,6 +693,7 @@ class gift_wrapper {
   wrap_stats stats_;
   std::vector<vertex_id> visited_;
   std::vector<seen> seen_;
+  std::vector<const coord*> beyond_;  // apex(): the points a cap's scan met beyond its ball
   std::vector<std::pair<std::uint64_t, vertex_id>> reused_;  // (face key, apex) of the previous wrap, hashed
   point_grid<G> added_;                                      // points added since it
 };
