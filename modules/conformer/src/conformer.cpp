@@ -324,6 +324,11 @@ class state {
   /// ball there, 21). docs/design-decisions.md, "A margin over 60 degrees for small angles in 3D".
   static constexpr double acute_cos = D == 3 ? 0.46947156278589086 : 0.5;  // cos 62, cos 60
   static constexpr double acute_sin = 0.8829475928589269;                 // sin 62 (3D only)
+  /// 3D: facets meeting at an edge fold by less than this (15 degrees, cos) are a smooth surface
+  /// there; a vertex all of whose edges are such gets no protecting ball for its small angles
+  /// (find_acute3). docs/design-decisions.md, "A vertex inside a smooth surface gets no protecting
+  /// ball": 30 degrees spared more points on the corpus but left a sliver at a guard.
+  static constexpr double flat_cos = 0.96592582628906831;  // cos 15
   /// Marks the PLC vertices where two PLC edges meet at less than the small angle (60 degrees
   /// in 2D, 62 in 3D): their edges are split on concentric shells (the `shell` rule action).
   void find_acute() {
@@ -757,6 +762,8 @@ class state {
   std::size_t segments_clean_upto_ = 0;  // points when conform_segments last returned
   std::vector<char> acute_;               // per PLC vertex: a small angle meets there (find_acute)
   std::vector<double> ball_;              // per PLC vertex: radius of its protecting ball, 0 for none
+  std::vector<char> ball_wanted_;         // 3D, per PLC vertex: it gets a protecting ball (find_acute3)
+  std::vector<double> guard_;             // 3D, per PLC vertex without a ball where a small angle meets: the radius it would have
   // GSSE_CONFORM_TRACE=1: per round, the number of splits and which rule/action fired how often
   bool trace_on_ = std::getenv("GSSE_CONFORM_TRACE") != nullptr;
   std::map<std::string, std::size_t> trace_;
@@ -871,6 +878,7 @@ class state3 : public state<3> {
     const auto& p = out_.points;
     const std::size_t n = out_.plc_points;
     ball_.assign(n, 0);
+    guard_.assign(n, 0);
     // features near each vertex: PLC edges and facets by the cells of their boxes
     double total = 0;
     for (const auto& E : edges_) total += distance(p[E.u], p[E.v]);
@@ -934,7 +942,7 @@ class state3 : public state<3> {
       });
       // the pieces inside are not split for size (min(h, 2r) / 2 is min(h / 2, r): halving is exact)
       if (sized()) r = std::min(r, size_at(p[v], 2 * r) / 2);
-      if (r > 0 && r < 1e300) ball_[v] = rules::snap_to_shell(r * (1 - 1e-8));
+      if (r > 0 && r < 1e300) (ball_wanted_[v] ? ball_ : guard_)[v] = rules::snap_to_shell(r * (1 - 1e-8));
     }
   }
 
@@ -951,10 +959,43 @@ class state3 : public state<3> {
 
   /// find_acute(), and also vertices where an edge meets a facet through the vertex that does not
   /// contain it at less than 62 degrees (acute_sin), and the ends of edges where two facets fold
-  /// at less than 62.
+  /// at less than 62. ball_wanted_: those that get a protecting ball (find_balls3), all but the
+  /// vertices inside a smooth surface.
   void find_acute3() {
     find_acute();
     const auto& p = out_.points;
+    // a vertex inside a smooth surface: every edge through it a side of exactly two facets, once
+    // each, that fold there by less than 15 degrees (flat_cos). Its small angles are those of a
+    // triangulated surface, the corners of its facets, which the shells about it handle as in
+    // 2D: it gets no protecting ball for them, only a guard radius for the refinement (guard_)
+    std::vector<char> flat(out_.plc_points, 0);
+    for (const auto& [v, es] : vertex_edges_) {
+      if (v >= flat.size()) continue;
+      bool ok = !es.empty();
+      for (auto e : es) {
+        const auto& E = edges_[e];
+        ok = E.facets.size() == 2;
+        std::array<point3, 2> into;  // per facet: the way into it across the edge
+        for (std::size_t i = 0; ok && i < 2; ++i) {
+          const auto f = E.facets[i];
+          int sides = 0;
+          for (auto [e2, fw] : facets_[f].sides)
+            if (e2 == e) {
+              ++sides;
+              const point3& n = facets_[f].unit;
+              const point3 d = fw ? p[E.v] - p[E.u] : p[E.u] - p[E.v];
+              into[i] = (n[static_cast<std::size_t>(facets_[f].axis)] > 0 ? 1.0 : -1.0) * cross(n, d);
+            }
+          ok = sides == 1;
+        }
+        ok = ok && dot(into[0], into[1]) < -flat_cos * std::sqrt(dot(into[0], into[0]) * dot(into[1], into[1]));
+        if (!ok) break;
+      }
+      flat[v] = ok;
+    }
+    ball_wanted_.assign(acute_.begin(), acute_.end());
+    for (std::size_t v = 0; v < flat.size(); ++v)
+      if (flat[v]) ball_wanted_[v] = 0;
     // facets folding onto each other at an edge (a dihedral angle below 62 degrees): its ends
     for (std::uint32_t e = 0; e < edges_.size(); ++e) {
       const auto& E = edges_[e];
@@ -969,8 +1010,8 @@ class state3 : public state<3> {
       for (std::size_t i = 0; i < into.size(); ++i)
         for (std::size_t j = i + 1; j < into.size(); ++j)
           if (dot(into[i], into[j]) > acute_cos * std::sqrt(dot(into[i], into[i]) * dot(into[j], into[j]))) {
-            if (E.u < acute_.size()) acute_[E.u] = 1;
-            if (E.v < acute_.size()) acute_[E.v] = 1;
+            if (E.u < acute_.size()) acute_[E.u] = ball_wanted_[E.u] = 1;
+            if (E.v < acute_.size()) acute_[E.v] = ball_wanted_[E.v] = 1;
           }
     }
     for (std::uint32_t f = 0; f < facets_.size(); ++f)
@@ -980,7 +1021,10 @@ class state3 : public state<3> {
           const auto& E = edges_[e];
           if (std::find(E.facets.begin(), E.facets.end(), f) != E.facets.end()) continue;
           const point3 d = p[E.u == v ? E.v : E.u] - p[v];
-          if (std::abs(dot(d, facets_[f].unit)) < acute_sin * std::sqrt(dot(d, d)) && near_corner(f, v, d)) acute_[v] = 1;
+          if (std::abs(dot(d, facets_[f].unit)) < acute_sin * std::sqrt(dot(d, d)) && near_corner(f, v, d)) {
+            acute_[v] = 1;
+            if (!flat[v]) ball_wanted_[v] = 1;
+          }
         }
       }
   }
@@ -2507,6 +2551,8 @@ class state3 : public state<3> {
         out_.face_source.push_back(facets_[f].source);
       }
     out_.protect = ball_;
+    for (std::size_t v = 0; v < guard_.size() && v < out_.protect.size(); ++v)
+      if (guard_[v] > 0) out_.protect[v] = guard_[v];
     out_.meshed_sides = meshed_;
     if (keep) return out_;
     return std::move(out_);

@@ -71,7 +71,10 @@ struct boundary {
   std::size_t steiner = 0;                        // boundary points inserted
   std::size_t rounds = 0;
   // 3D: per PLC point, the radius of its protecting ball (an acute vertex: no point is inserted
-  // inside, shells go on outside), 0 for none; empty in 2D
+  // inside, shells go on outside), 0 for none; empty in 2D. A vertex inside a smooth surface
+  // (facets folding by less than 15 degrees at each of its edges) where a small angle meets has
+  // no ball, only shells, and here the radius its ball would have: the refinement's guard
+  // (modules/refinement) excepts about it as about a ball
   std::vector<double> protect;
   // 3D: per facet of the conformer (input facets merged as by options::merge_coplanar), whether
   // its positive / negative side lies in a segment, if the conformer needed to know (slanted
