@@ -330,7 +330,14 @@ class element_store {
     const auto [it, fresh] = seen_.try_emplace(key, seen{etag, cur_->dim, cur_->entity});
     if (!fresh) {
       if (repeats_ok && it->second.dim == cur_->dim && it->second.entity == cur_->entity) return;
-      c_.fail_at(where, "element " + std::to_string(etag) + " has the same nodes as element " + std::to_string(it->second.tag));
+      // which entities: two surfaces of a model that share a triangle (Gmsh meshes a surface
+      // cut at a tangent plane so) are named as Gmsh names them
+      auto entity = [](int dim, int tag) {
+        return std::string(dim == 3 ? "volume " : dim == 2 ? "surface " : dim == 1 ? "curve " : "point ") + std::to_string(tag);
+      };
+      c_.fail_at(where, "element " + std::to_string(etag) + " (" + entity(cur_->dim, cur_->entity) + ") has the same nodes as element " +
+                            std::to_string(it->second.tag) + " (" + entity(it->second.dim, it->second.entity) + ")" +
+                            (it->second.entity != cur_->entity || it->second.dim != cur_->dim ? ": the two entities overlap there" : ""));
     }
     cur_->conn.insert(cur_->conn.end(), nodes, nodes + nodes_);
     if (cur_->dim == 2) cur_->at.push_back(where);
