@@ -152,15 +152,18 @@ quality_case() {  # name input bound
   local mode="quality=$bound" extra=()
   [ -n "${GRADE:-}" ] && mode="quality=$bound,grade=$GRADE" && extra=(--grade "$GRADE")
   if line=$(mesh_once "$name" "$input" "$poly" "$mode" --quality "$bound" ${extra[@]+"${extra[@]}"}); then
-    local sliver_free=0
+    local sliver_free=0 inserted=0
     [ -z "${GRADE:-}" ] && [[ "${SLIVER_FREE:-}" == *" $name "* ]] && sliver_free=1
-    verdict=$($py - "$dir/$mode/stats.json" "$sliver_free" <<'PY'
+    [ -z "${GRADE:-}" ] && [[ "${INSERTED:-}" == *" $name "* ]] && inserted=1
+    verdict=$($py - "$dir/$mode/stats.json" "$sliver_free" "$inserted" <<'PY'
 import json, sys
 q = json.load(open(sys.argv[1]))["quality"]
 r, e, a = q["refinement"], q["edges"], q["angle"]
 ok = r["converged"] and r["above_bound"] == r["excepted"]
 if sys.argv[2] == "1" and a["below_5"] + a["above_170"] > 0:  # SLIVER_FREE (corpus_mesh.sh)
     print("SLIVERS: %d angles below 5 degrees, %d above 170: " % (a["below_5"], a["above_170"]), end="")
+if sys.argv[3] == "1" and r.get("cavity_front_regions", 0) > 0:  # INSERTED (corpus_mesh.sh)
+    print("FRONT-FILLED: a segment's cavities left to the front mesher %d times: " % r["cavity_front_regions"], end="")
 # every round's cavities re-meshed in place: a round that falls back to meshing every segment
 # whole is correct but is where a cavity went wrong (islands of surviving cells did, 14 rounds)
 whole = r.get("full_remeshes", 0)
@@ -173,7 +176,7 @@ print(("" if ok else "NOT CONVERGED: ") + ("MESHED WHOLE %d times: " % whole if 
 PY
 )
     printf '%s\n%-28s %-14s %s\n' "$line" "" "" "$verdict" > "$dir/result"
-    [[ "$verdict" == NOT* || "$verdict" == MESHED* || "$verdict" == SLIVERS* ]] && echo 1 > "$dir/failed" || echo 0 > "$dir/failed"
+    [[ "$verdict" == NOT* || "$verdict" == MESHED* || "$verdict" == SLIVERS* || "$verdict" == FRONT* ]] && echo 1 > "$dir/failed" || echo 0 > "$dir/failed"
   else
     echo "$line" > "$dir/result"
     echo 1 > "$dir/failed"

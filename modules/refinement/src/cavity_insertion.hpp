@@ -56,7 +56,7 @@ class cavity {
   /// holds it in its ball, a face of its conflict region does not see it strictly, or a face
   /// through it meets neither another new cell nor a removed wall.
   template <class OnSource>
-  bool insert(vertex_id q, std::span<const std::uint32_t> hints, bool free, OnSource&& on_source) {
+  bool insert(vertex_id q, std::span<const std::uint32_t> hints, bool free, OnSource&& on_source, bool shrink = false) {
     outside = false;
     std::uint32_t seed = none;
     if (free) {
@@ -119,6 +119,34 @@ class cavity {
           }
         }
         rim_.push_back({a, i});
+      }
+    }
+    if (shrink) {
+      // the conflict region cut back to what q sees (as TetGen's cavity is): a cell with a rim
+      // face q does not see strictly, other than a droppable wall of q's, leaves it, until none
+      // has; the seed must stay. What stays in conflict outside it is checked by the caller
+      // (locally_delaunay) once every point is in
+      for (bool cut = true; cut;) {
+        cut = false;
+        for (const auto& [a, i] : rim_) {
+          if (mark_[a] != in) continue;
+          const std::int32_t n = nb_[a][static_cast<std::size_t>(i)];
+          if (is_droppable(n) && on_source(source_of(n))) continue;
+          const face f = face_of(c_[a], i);
+          if (geometry::orient3d(p_[f[0]], p_[f[1]], p_[f[2]], p_[q]) > 0) continue;
+          if (a == seed) return false;
+          mark_[a] = out;
+          cut = true;
+        }
+        if (!cut) break;
+        std::erase_if(dead_, [&](std::uint32_t a) { return mark_[a] != in; });
+        rim_.clear();
+        for (const std::uint32_t a : dead_)
+          for (int i = 0; i < 4; ++i) {
+            const std::int32_t n = nb_[a][static_cast<std::size_t>(i)];
+            if (n >= 0 && mark_[static_cast<std::size_t>(n)] == in) continue;
+            rim_.push_back({a, i});
+          }
       }
     }
     // the star: every rim face q sees strictly, or a droppable wall of one of q's sources
@@ -227,6 +255,25 @@ class cavity {
     for (std::size_t a = 0; a < c_.size(); ++a)
       if (!spare_[a]) out.push_back(c_[a]);
     return out;
+  }
+  /// Whether every cell is locally Delaunay: across each face between two cells, the far cell's
+  /// vertex lies outside the near one's ball (perturbed). With its walls, the region's constrained
+  /// Delaunay triangulation then; what insert(..., shrink) left needs this checked.
+  bool locally_delaunay() const {
+    for (std::size_t a = 0; a < c_.size(); ++a) {
+      if (spare_[a]) continue;
+      for (int i = 0; i < 4; ++i) {
+        const std::int32_t n = nb_[a][static_cast<std::size_t>(i)];
+        if (n < 0 || static_cast<std::size_t>(n) < a) continue;  // each pair once
+        const cell& b = c_[static_cast<std::size_t>(n)];
+        for (int j = 0; j < 4; ++j)
+          if (nb_[static_cast<std::size_t>(n)][static_cast<std::size_t>(j)] == static_cast<std::int32_t>(a)) {
+            if (in_ball(static_cast<std::uint32_t>(a), b[static_cast<std::size_t>(j)])) return false;
+            break;
+          }
+      }
+    }
+    return true;
   }
   /// Every face across which a cell has a droppable wall, facing into its cell, in place order.
   std::vector<face> droppable_walls() const {
