@@ -1803,49 +1803,40 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
           pending.push_back({a, e});
         }
         // a point may wait for another: one on a facet whose balls meet a face another point
-        // on a neighbouring facet removes. Passes until one inserts nothing
+        // on a neighbouring facet removes. Passes until one inserts nothing (a free point no cell
+        // here holds lies in another segment: dropped)
         std::vector<std::pair<std::size_t, std::size_t>> later;
-        for (bool progress = true; progress && !pending.empty();) {
-          progress = false;
-          later.clear();
-          for (const auto& [a, e] : pending) {
-            const auto y = static_cast<vertex_id>(todo[a].first);
-            const bool free = todo[a].first >> 32;
-            if (cav.insert(y, std::span<const std::uint32_t>(hints).subspan(a, e - a), free,
-                           [&](std::uint32_t s) { return std::binary_search(new_on.begin(), new_on.end(), std::pair{y, s}); }))
-              progress = true;
-            else if (!cav.outside)  // a free point no cell here holds lies in another segment
-              later.push_back({a, e});
+        bool cut = false;
+        auto passes = [&](bool cutting) {
+          for (bool progress = true; progress && !pending.empty();) {
+            progress = false;
+            later.clear();
+            for (const auto& [a, e] : pending) {
+              const auto y = static_cast<vertex_id>(todo[a].first);
+              const bool free = todo[a].first >> 32;
+              const auto on = [&](std::uint32_t s) { return std::binary_search(new_on.begin(), new_on.end(), std::pair{y, s}); };
+              const std::span<const std::uint32_t> at = std::span<const std::uint32_t>(hints).subspan(a, e - a);
+              if (cav.insert(y, at, free, on)) {
+                progress = true;
+              } else if (cav.outside) {
+                continue;
+              } else if (cutting && !free && cav.insert(y, at, free, on, true)) {
+                progress = cut = true;
+              } else {
+                later.push_back({a, e});
+              }
+            }
+            std::swap(pending, later);
           }
-          std::swap(pending, later);
-        }
+        };
+        passes(false);
         // points on new boundary faces that wait for each other: a split point of an input edge
         // whose conflict region meets, from behind, a face of a third facet made through an
         // earlier point, which another such point would replace, and that one waits for a wall
         // the first would remove (a cycle about a vertex of a curved surface; docs/benchmarks.md,
         // sixty-third part). They go in with their conflict regions cut back to what they see,
         // and the cavity then must be Delaunay across every face between its cells
-        bool cut = false;
-        for (bool progress = true; progress && !pending.empty();) {
-          progress = false;
-          later.clear();
-          for (const auto& [a, e] : pending) {
-            const auto y = static_cast<vertex_id>(todo[a].first);
-            const bool free = todo[a].first >> 32;
-            const auto on = [&](std::uint32_t s) { return std::binary_search(new_on.begin(), new_on.end(), std::pair{y, s}); };
-            const std::span<const std::uint32_t> at = std::span<const std::uint32_t>(hints).subspan(a, e - a);
-            if (cav.insert(y, at, free, on)) {
-              progress = true;
-            } else if (cav.outside) {
-              continue;
-            } else if (!free && cav.insert(y, at, free, on, true)) {
-              progress = cut = true;
-            } else {
-              later.push_back({a, e});
-            }
-          }
-          std::swap(pending, later);
-        }
+        passes(true);
         if (cut && !cav.locally_delaunay()) {
           out.ok = false;
           return;
