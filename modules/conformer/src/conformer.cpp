@@ -964,56 +964,45 @@ class state3 : public state<3> {
   void find_acute3() {
     find_acute();
     const auto& p = out_.points;
-    // a vertex inside a smooth surface: every edge through it a side of exactly two facets, once
-    // each, that fold there by less than 15 degrees (flat_cos). Its small angles are those of a
-    // triangulated surface, the corners of its facets, which the shells about it handle as in
-    // 2D: it gets no protecting ball for them, only a guard radius for the refinement (guard_)
-    std::vector<char> flat(out_.plc_points, 0);
-    for (const auto& [v, es] : vertex_edges_) {
-      if (v >= flat.size()) continue;
-      bool ok = !es.empty();
-      for (auto e : es) {
-        const auto& E = edges_[e];
-        ok = E.facets.size() == 2;
-        std::array<point3, 2> into;  // per facet: the way into it across the edge
-        for (std::size_t i = 0; ok && i < 2; ++i) {
-          const auto f = E.facets[i];
-          int sides = 0;
-          for (auto [e2, fw] : facets_[f].sides)
-            if (e2 == e) {
-              ++sides;
-              const point3& n = facets_[f].unit;
-              const point3 d = fw ? p[E.v] - p[E.u] : p[E.u] - p[E.v];
-              into[i] = (n[static_cast<std::size_t>(facets_[f].axis)] > 0 ? 1.0 : -1.0) * cross(n, d);
-            }
-          ok = sides == 1;
-        }
-        ok = ok && dot(into[0], into[1]) < -flat_cos * std::sqrt(dot(into[0], into[0]) * dot(into[1], into[1]));
-        if (!ok) break;
-      }
-      flat[v] = ok;
-    }
-    ball_wanted_.assign(acute_.begin(), acute_.end());
-    for (std::size_t v = 0; v < flat.size(); ++v)
-      if (flat[v]) ball_wanted_[v] = 0;
-    // facets folding onto each other at an edge (a dihedral angle below 62 degrees): its ends
+    // per edge, the way into each facet side at it, across it: facets folding onto each other
+    // there (a dihedral angle below 62 degrees) make its ends small-angle vertices; exactly two
+    // facets, once each, folding by less than 15 degrees (flat_cos) make it smooth
+    std::vector<char> smooth(edges_.size(), 0);
     for (std::uint32_t e = 0; e < edges_.size(); ++e) {
       const auto& E = edges_[e];
-      std::vector<point3> into;  // per facet side at the edge: the way into the facet, across it
+      std::vector<std::pair<std::uint32_t, point3>> into;  // (facet, the way into it)
       for (auto f : E.facets)
         for (auto [e2, fw] : facets_[f].sides)
           if (e2 == e) {
             const point3& n = facets_[f].unit;
             const point3 d = fw ? p[E.v] - p[E.u] : p[E.u] - p[E.v];
-            into.push_back((n[static_cast<std::size_t>(facets_[f].axis)] > 0 ? 1.0 : -1.0) * cross(n, d));
+            into.push_back({f, (n[static_cast<std::size_t>(facets_[f].axis)] > 0 ? 1.0 : -1.0) * cross(n, d)});
           }
+      // (the dot product of two of them, and the product of their lengths)
+      auto dot_norms = [&](std::size_t i, std::size_t j) {
+        const point3 &a = into[i].second, &b = into[j].second;
+        return std::pair{dot(a, b), std::sqrt(dot(a, a) * dot(b, b))};
+      };
       for (std::size_t i = 0; i < into.size(); ++i)
         for (std::size_t j = i + 1; j < into.size(); ++j)
-          if (dot(into[i], into[j]) > acute_cos * std::sqrt(dot(into[i], into[i]) * dot(into[j], into[j]))) {
-            if (E.u < acute_.size()) acute_[E.u] = ball_wanted_[E.u] = 1;
-            if (E.v < acute_.size()) acute_[E.v] = ball_wanted_[E.v] = 1;
+          if (const auto [ab, l] = dot_norms(i, j); ab > acute_cos * l) {
+            if (E.u < acute_.size()) acute_[E.u] = 1;
+            if (E.v < acute_.size()) acute_[E.v] = 1;
           }
+      if (E.facets.size() == 2 && into.size() == 2 && into[0].first != into[1].first) {
+        const auto [ab, l] = dot_norms(0, 1);
+        smooth[e] = ab < -flat_cos * l;
+      }
     }
+    // a vertex inside a smooth surface (every edge through it smooth): its small angles are those
+    // of a triangulated surface, the corners of its facets, which the shells about it handle as
+    // in 2D; it gets no protecting ball for them, only a guard radius for the refinement (guard_)
+    std::vector<char> flat(out_.plc_points, 0);
+    for (const auto& [v, es] : vertex_edges_)
+      if (v < flat.size()) flat[v] = !es.empty() && std::all_of(es.begin(), es.end(), [&](std::uint32_t e) { return smooth[e] != 0; });
+    ball_wanted_.assign(acute_.begin(), acute_.end());
+    for (std::size_t v = 0; v < flat.size(); ++v)
+      if (flat[v]) ball_wanted_[v] = 0;
     for (std::uint32_t f = 0; f < facets_.size(); ++f)
       for (vertex_id v : facets_[f].corners) {
         if (v >= acute_.size() || acute_[v] || !vertex_edges_.count(v)) continue;
