@@ -695,10 +695,12 @@ class state {
       for_each(execution::par(opt_.threads), ids, [&](std::uint32_t e) {
         std::vector<vertex_id> scratch;
         const auto& ch = edges_[e].chain;
+        // no recent point near the whole edge: none near a subsegment between old points
+        const bool far = !near_edge(recent, e);
         for (std::size_t i = 0; i + 1 < ch.size() && !encroached[e]; ++i) {
           const vertex_id a = ch[i], b = ch[i + 1];
           if (a < upto && b < upto) {
-            encroached[e] = near_subsegment(recent, a, b);
+            if (!far) encroached[e] = near_subsegment(recent, a, b);
           } else {
             encroached[e] = segment_encroacher(a, b, scratch) != no_vertex;
           }
@@ -708,6 +710,7 @@ class state {
       // again only if one of those lies in the closed ball of one of its subsegments
       recent_points<D> added(p[0], 2 * grid_h_);
       auto touched = [&](std::uint32_t e) {
+        if (!near_edge(added, e)) return false;
         const auto& ch = edges_[e].chain;
         for (std::size_t i = 0; i + 1 < ch.size(); ++i)
           if (near_subsegment(added, ch[i], ch[i + 1])) return true;
@@ -733,6 +736,18 @@ class state {
     }
     segments_clean_upto_ = out_.points.size();  // no subsegment is encroached by any point now
     return splits;
+  }
+
+  /// False if no point of g lies near PLC edge e: a ball about the whole edge that holds the
+  /// diametral bound of each of its subsegments (their points lie on the edge up to rounding),
+  /// a prefilter that spares a pass over the edge's subsegments (their balls, each one's box test).
+  bool near_edge(const recent_points<D>& g, std::uint32_t e) const {
+    if (g.empty) return false;
+    const auto& p = out_.points;
+    const auto& E = edges_[e];
+    const point<D> c = 0.5 * (p[E.u] + p[E.v]);
+    const double l = distance(p[E.u], p[E.v]);
+    return g.near(c, 0.5 * l * (1 + 1e-6) + 1e-6 * l + 64 * detail::eps * detail::magnitude(c) + 1e-300);
   }
 
   /// Whether a point of g lies in the closed diametral ball of subsegment ab (a tie counts).

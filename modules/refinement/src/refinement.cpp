@@ -1779,21 +1779,32 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         insertion::cavity cav(std::span<const point<D>>(p), cs, std::move(nb));
         // the points: those on the region's new boundary faces first (kind 0), then free ones
         // (kind 1), each with the cells whose balls held it (walks start there), by id
+        // placed by counting: a first pass counts each (kind, point)'s entries, the second puts
+        // them in their runs in cell order, the order a sort of the pairs gives, in one array the
+        // size of the list (a torus's first round: 13 million hits, which std::sort took 1.2 s
+        // over and a radix sort doubled in memory)
         std::vector<std::pair<std::uint64_t, std::uint32_t>> todo;  // ((kind, point), cell)
         const auto& hr = hits_at[jb.region];
-        auto it = hr.begin();
-        for (std::size_t x = 0; x < K.size(); ++x) {  // K ascends, and so do its cells' indices
-          const std::uint32_t i = dr[K[x]];
-          it = std::lower_bound(it, hr.end(), std::pair{i, vertex_id{0}});
-          for (; it != hr.end() && it->first == i; ++it) {
-            const vertex_id y = it->second;
-            if (!on_came[y - n0])
-              todo.push_back({(std::uint64_t{1} << 32) | y, static_cast<std::uint32_t>(x)});
-            else if (std::binary_search(W.came_points.begin(), W.came_points.end(), y))
-              todo.push_back({y, static_cast<std::uint32_t>(x)});
+        const std::size_t fresh_points = p.size() - n0;
+        std::vector<std::size_t> run_at(2 * fresh_points + 1, 0);  // per (kind, point): its run's start
+        auto each_hit = [&](auto&& f) {
+          auto it = hr.begin();
+          for (std::size_t x = 0; x < K.size(); ++x) {  // K ascends, and so do its cells' indices
+            const std::uint32_t i = dr[K[x]];
+            it = std::lower_bound(it, hr.end(), std::pair{i, vertex_id{0}});
+            for (; it != hr.end() && it->first == i; ++it) {
+              const vertex_id y = it->second;
+              if (!on_came[y - n0])
+                f(fresh_points + (y - n0), (std::uint64_t{1} << 32) | y, static_cast<std::uint32_t>(x));
+              else if (std::binary_search(W.came_points.begin(), W.came_points.end(), y))
+                f(y - n0, std::uint64_t{y}, static_cast<std::uint32_t>(x));
+            }
           }
-        }
-        std::sort(todo.begin(), todo.end());
+        };
+        each_hit([&](std::size_t slot, std::uint64_t, std::uint32_t) { ++run_at[slot + 1]; });
+        for (std::size_t k = 1; k < run_at.size(); ++k) run_at[k] += run_at[k - 1];
+        todo.resize(run_at.back());
+        each_hit([&](std::size_t slot, std::uint64_t key, std::uint32_t x) { todo[run_at[slot]++] = {key, x}; });
         std::vector<std::uint32_t> hints(todo.size());
         for (std::size_t k = 0; k < todo.size(); ++k) hints[k] = todo[k].second;
         std::vector<std::pair<std::size_t, std::size_t>> pending;  // each point's run of todo
