@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <tuple>
 #include <type_traits>
+#include <utility>
 
 #include "gsse/container/key_set.hpp"
 #include "gsse/container/union_find.hpp"
@@ -1786,7 +1787,12 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         std::vector<std::pair<std::uint64_t, std::uint32_t>> todo;  // ((kind, point), cell)
         const auto& hr = hits_at[jb.region];
         const std::size_t fresh_points = p.size() - n0;
-        std::vector<std::size_t> run_at(2 * fresh_points + 1, 0);  // per (kind, point): its run's start
+        // per (kind, point) slot, its count then its run's start: a buffer per thread, all zero
+        // between cavities (only the slots this cavity touched are counted and cleared, so a
+        // round of many small cavities does not fill and sum the whole range for each)
+        thread_local std::vector<std::size_t> run_at;
+        if (run_at.size() < 2 * fresh_points) run_at.resize(2 * fresh_points, 0);
+        std::vector<std::size_t> touched;
         auto each_hit = [&](auto&& f) {
           auto it = hr.begin();
           for (std::size_t x = 0; x < K.size(); ++x) {  // K ascends, and so do its cells' indices
@@ -1801,10 +1807,15 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
             }
           }
         };
-        each_hit([&](std::size_t slot, std::uint64_t, std::uint32_t) { ++run_at[slot + 1]; });
-        for (std::size_t k = 1; k < run_at.size(); ++k) run_at[k] += run_at[k - 1];
-        todo.resize(run_at.back());
+        each_hit([&](std::size_t slot, std::uint64_t, std::uint32_t) {
+          if (run_at[slot]++ == 0) touched.push_back(slot);
+        });
+        std::sort(touched.begin(), touched.end());
+        std::size_t total = 0;
+        for (std::size_t slot : touched) total += std::exchange(run_at[slot], total);
+        todo.resize(total);
         each_hit([&](std::size_t slot, std::uint64_t key, std::uint32_t x) { todo[run_at[slot]++] = {key, x}; });
+        for (std::size_t slot : touched) run_at[slot] = 0;
         std::vector<std::uint32_t> hints(todo.size());
         for (std::size_t k = 0; k < todo.size(); ++k) hints[k] = todo[k].second;
         std::vector<std::pair<std::size_t, std::size_t>> pending;  // each point's run of todo
