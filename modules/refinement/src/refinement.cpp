@@ -331,16 +331,27 @@ sizing::aabb<D> face_box(const std::vector<point<D>>& p, const std::array<vertex
 }
 
 /// Points accepted in a round, found by distance: one hash grid per power-of-two radius in use,
-/// so that a query of radius r visits at most 3^D cells whatever the grading.
+/// so that a query of radius r visits at most 2^D cells whatever the grading. A level's cells are
+/// twice the power of two above r (2r < cell <= 4r): a query's box spans one or two cells along
+/// each axis (with cells of one power of two, r < cell <= 2r, it spanned two or three: up to 27
+/// probes of the hash table, most of them empty; the round's accept loop is serial, and those
+/// probes were most of it). The answer is the same whatever the cells.
 template <std::size_t D>
 class accepted_points {
  public:
   accepted_points(const point<D>& origin, const std::set<int>& levels) {
-    for (int k : levels) grids_.emplace(k, hash_grid<D>(origin, std::ldexp(1.0, k)));
+    if (levels.empty()) return;
+    first_ = *levels.begin();
+    slot_.assign(static_cast<std::size_t>(*levels.rbegin() - first_ + 1), 0);
+    for (int k : levels) {
+      slot_[static_cast<std::size_t>(k - first_)] = static_cast<std::uint32_t>(grids_.size());
+      grids_.emplace_back(origin, std::ldexp(1.0, k + 1));
+    }
   }
   static int level(double r) { return std::ilogb(r) + 1; }
+  /// r's level must be among those given.
   bool any_within(const point<D>& c, double r) const {
-    const auto& g = grids_.at(level(r));
+    const auto& g = grids_[slot_[static_cast<std::size_t>(level(r) - first_)]];
     point<D> lo, hi;
     for (std::size_t k = 0; k < D; ++k) lo[k] = c[k] - r, hi[k] = c[k] + r;
     return !g.visit(lo, hi, [&](std::uint32_t i) { return !(squared_distance(points_[i], c) < r * r); });
@@ -348,11 +359,13 @@ class accepted_points {
   void add(const point<D>& c) {
     const auto i = static_cast<std::uint32_t>(points_.size());
     points_.push_back(c);
-    for (auto& [k, g] : grids_) g.insert(i, c);
+    for (auto& g : grids_) g.insert(i, c);
   }
 
  private:
-  std::map<int, hash_grid<D>> grids_;
+  int first_ = 0;                    // the lowest level
+  std::vector<std::uint32_t> slot_;  // per level from first_: its grid's place in grids_
+  std::vector<hash_grid<D>> grids_;
   std::vector<point<D>> points_;
 };
 
@@ -1877,22 +1890,28 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       auto oriented = [&](const face_t<D>& f) { return std::pair{pack<D>(key_of<D>(f)), parity(f)}; };
       std::vector<char> filled(cells.size(), 0);
       std::vector<std::pair<std::size_t, std::size_t>> jobs_of(cells.size(), {0, 0});
+      std::vector<std::size_t> checked;  // the insertable regions
       for (std::size_t r = 0, j = 0; r < cells.size(); ++r) {
-        const auto& W = by_region[r];
-        if (!W.insertable) continue;
+        if (!by_region[r].insertable) continue;
+        const std::size_t first = j;
+        while (j < jobs.size() && jobs[j].region == r) ++j;
+        jobs_of[r] = {first, j};
+        checked.push_back(r);
+      }
+      // in parallel over the regions (each sorts its own lists: serial, they were a fiftieth of a
+      // 2-thread run of the trench)
+      for_each(execution::par(threads), checked, [&](std::size_t r) {
         bool good = true;
         std::vector<std::pair<packed_key<D>, int>> left, want;
-        const std::size_t first = j;
-        for (; j < jobs.size() && jobs[j].region == r; ++j) {
+        for (std::size_t j = jobs_of[r].first; j < jobs_of[r].second; ++j) {
           good = good && results[j].ok;
           for (const auto& f : results[j].walls) left.push_back(oriented(f));
         }
-        jobs_of[r] = {first, j};
-        for (const auto& f : W.came) want.push_back(oriented(f));
+        for (const auto& f : by_region[r].came) want.push_back(oriented(f));
         std::sort(left.begin(), left.end());
         std::sort(want.begin(), want.end());
         filled[r] = good && left == want;
-      }
+      }, [&](std::size_t r) { return static_cast<double>(by_region[r].came.size()); });
       // every free new point in a cell of a filled region, or held by a ball of a region the
       // front mesher fills (its own, as far as this round can tell): else that point was left out
       // (all its cells' balls were only tested for points on new faces) and the front mesher
