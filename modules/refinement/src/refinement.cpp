@@ -835,13 +835,16 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
         spot.push_back(box);
       }
     if (!who.empty()) {
-      std::vector<std::size_t> pieces((b.faces.size() + piece - 1) / piece);
+      // pieces of 512 faces (the cells' 4096 made about 9 pieces of the 1e5 trench's faces, whose
+      // candidates crowd at the liner's walls: this pass took 23 ms of its 2-thread plans, 20 now)
+      constexpr std::size_t face_piece = 512;
+      std::vector<std::size_t> pieces((b.faces.size() + face_piece - 1) / face_piece);
       std::iota(pieces.begin(), pieces.end(), std::size_t{0});
       {
         const box_grid<D> centres(spot);
         std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> hits(pieces.size());  // (candidate, face)
         for_each(execution::par(threads), pieces, [&](std::size_t q) {
-          for (std::size_t f = q * piece; f < std::min(b.faces.size(), (q + 1) * piece); ++f) {
+          for (std::size_t f = q * face_piece; f < std::min(b.faces.size(), (q + 1) * face_piece); ++f) {
             const auto& F = b.faces[f];
             const auto box = face_box(bp, F);
             centres.visit(box, [&](std::uint32_t g) {
@@ -858,14 +861,25 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
             });
           }
         });
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> all_hits;
-        for (auto& h : hits) all_hits.insert(all_hits.end(), h.begin(), h.end());
-        gsse::stable_sort(execution::par(threads), all_hits.begin(), all_hits.end());
-        for (std::size_t j = 0; j < all_hits.size();) {
-          const auto [k, i] = who[all_hits[j].first];
+        // each candidate's faces, ascending: grouped by counting (the pieces hold ascending faces,
+        // in ascending pieces), as a sort of the (candidate, face) pairs would give them
+        std::vector<std::size_t> at(who.size() + 1, 0);
+        for (const auto& h : hits)
+          for (const auto& [g, f] : h) ++at[g + 1];
+        for (std::size_t g = 0; g < who.size(); ++g) at[g + 1] += at[g];
+        std::vector<std::uint32_t> by_candidate(at.back());
+        {
+          std::vector<std::size_t> next(at.begin(), at.end() - 1);
+          for (const auto& h : hits)
+            for (const auto& [g, f] : h) by_candidate[next[g]++] = f;
+        }
+        for (std::uint32_t g = 0; g < who.size(); ++g) {
+          if (at[g] == at[g + 1]) continue;
+          const auto [k, i] = who[g];
           auto& x = found[k][i];
           x.first = static_cast<std::uint32_t>(faces[k].size());
-          for (const auto g = all_hits[j].first; j < all_hits.size() && all_hits[j].first == g; ++j) faces[k].push_back(all_hits[j].second);
+          faces[k].insert(faces[k].end(), by_candidate.begin() + static_cast<std::ptrdiff_t>(at[g]),
+                          by_candidate.begin() + static_cast<std::ptrdiff_t>(at[g + 1]));
           x.count = static_cast<std::uint32_t>(faces[k].size()) - x.first;
         }
       }
@@ -884,7 +898,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
         const box_grid<D> near(segments);
         std::vector<std::vector<std::uint32_t>> leave(pieces.size());  // candidates whose segment may meet a face
         for_each(execution::par(threads), pieces, [&](std::size_t q) {
-          for (std::size_t f = q * piece; f < std::min(b.faces.size(), (q + 1) * piece); ++f) {
+          for (std::size_t f = q * face_piece; f < std::min(b.faces.size(), (q + 1) * face_piece); ++f) {
             const auto& F = b.faces[f];
             auto box = sizing::aabb<D>::empty();
             for (auto v : F) box.add(bp[v]);
