@@ -334,8 +334,9 @@ sizing::aabb<D> face_box(const std::vector<point<D>>& p, const std::array<vertex
 /// so that a query of radius r visits at most 2^D cells whatever the grading. A level's cells are
 /// twice the power of two above r (2r < cell <= 4r): a query's box spans one or two cells along
 /// each axis (with cells of one power of two, r < cell <= 2r, it spanned two or three: up to 27
-/// probes of the hash table, most of them empty; the round's accept loop is serial, and those
-/// probes were most of it). The answer is the same whatever the cells.
+/// probes of the hash table, most of them empty; the round's accept loop is serial, and these
+/// queries were its largest symbol in a 2-thread trench run: docs/benchmarks.md, sixty-fifth
+/// part). The answer is the same whatever the cells.
 template <std::size_t D>
 class accepted_points {
  public:
@@ -1912,8 +1913,8 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         jobs_of[r] = {first, j};
         checked.push_back(r);
       }
-      // in parallel over the regions (each sorts its own lists: serial, they were a fiftieth of a
-      // 2-thread run of the trench)
+      // in parallel over the regions (each sorts its own lists: serial, these sorts were the
+      // second largest symbol of a 2-thread trench run's serial samples, about 1% of its time)
       for_each(execution::par(threads), checked, [&](std::size_t r) {
         bool good = true;
         std::vector<std::pair<packed_key<D>, int>> left, want;
