@@ -1345,13 +1345,23 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     gone_faces.insert(gone_faces.end(), gone_in[i].begin(), gone_in[i].end());
     came_faces.insert(came_faces.end(), came_in[i].begin(), came_in[i].end());
   }
-  std::vector<packed_key<D>> gone;  // sorted keys
+  // the gone faces' keys in a hash set, and their vertices marked: a face with an unmarked vertex
+  // is no gone face, and is not looked up (a bisection in the sorted keys for each face of every
+  // cell with three marked vertices was a twentieth of the 1e5 trench's cavity search)
   std::vector<char> on_gone(p.size(), 0);
+  std::vector<face_t<D>> gone_keys;
+  gone_keys.reserve(gone_faces.size());
   for (std::size_t f : gone_faces) {
-    gone.push_back(pack<D>(key_of<D>(b0.faces[f])));
+    gone_keys.push_back(key_of<D>(b0.faces[f]));
     for (auto v : b0.faces[f]) on_gone[v] = 1;
   }
-  std::sort(gone.begin(), gone.end());
+  const key_set<D> gone(gone_keys);
+  std::vector<face_t<D>>().swap(gone_keys);
+  auto is_gone = [&](const face_t<D>& g) {
+    for (auto v : g)
+      if (!on_gone[v]) return false;
+    return gone.contains(key_of<D>(g));
+  };
   if (p.size() == n0 && gone_faces.empty() && came_faces.empty()) return true;
   // 3D: the cavities are filled by inserting the new points (cavity_insertion.hpp) where the
   // sources of the faces line up (a gone face's facet is the facet its new faces came from).
@@ -1461,7 +1471,10 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         for (auto v : c) marked += on_gone[v];
         if (marked >= D)
           for (const auto& g : faces_into<D>(c))
-            if (std::binary_search(gone.begin(), gone.end(), pack<D>(key_of<D>(g)))) out = 1;
+            if (is_gone(g)) {
+              out = 1;
+              break;
+            }
         // (3D insertion) the new points in the ball of a cell that dies anyway, by exact tests
         // alone: all of them for a flat cell, those on new boundary faces for one on a gone face
         // (where their insertions start: a free point's cavity has cells of its own)
@@ -1583,6 +1596,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     // piece; the new boundary faces on the region's side, facing into it, and their new points
     bool insertable = false;
     std::vector<std::uint32_t> mate, place;
+    std::vector<std::pair<std::size_t, std::size_t>> hits_of;  // per dead cell: its hits, [begin, end)
     std::vector<std::vector<std::uint32_t>> components;
     std::vector<face_t<D>> came;
     std::vector<vertex_id> came_points;
@@ -1738,6 +1752,17 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         W.place[k] = static_cast<std::uint32_t>(W.components[at].size());
         W.components[at].push_back(k);
       }
+      // each dead cell's run of the region's hits (both lists ascend by cell): read directly by
+      // the insertion below, where a bisection per cell was
+      const auto& hr = hits_at[r];
+      W.hits_of.resize(n);
+      for (std::size_t k = 0, h = 0; k < n; ++k) {
+        const std::uint32_t i = dead_at[r][k];
+        while (h < hr.size() && hr[h].first < i) ++h;
+        const std::size_t a = h;
+        while (h < hr.size() && hr[h].first == i) ++h;
+        W.hits_of[k] = {a, h};
+      }
     }
     if (W.insertable) {  // the new boundary faces on its side, facing into it, and their new points
       for (std::size_t f : came_faces)
@@ -1799,9 +1824,12 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
             if (m != ~std::uint32_t{0}) {
               n = static_cast<std::int32_t>(W.place[m / 4]);
             } else {
-              const auto key = pack<D>(key_of<D>(insertion::face_of(cs[x], i)));
-              const auto it = std::lower_bound(gone_source.begin(), gone_source.end(), std::pair{key, std::uint32_t{0}});
-              n = it != gone_source.end() && it->first == key ? insertion::droppable(it->second) : insertion::fixed;
+              n = insertion::fixed;
+              if (const auto g = insertion::face_of(cs[x], i); is_gone(g)) {
+                const auto key = pack<D>(key_of<D>(g));
+                const auto it = std::lower_bound(gone_source.begin(), gone_source.end(), std::pair{key, std::uint32_t{0}});
+                if (it != gone_source.end() && it->first == key) n = insertion::droppable(it->second);
+              }
             }
           }
         }
@@ -1822,12 +1850,10 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         if (run_at.size() < 2 * fresh_points) run_at.resize(2 * fresh_points, 0);
         std::vector<std::size_t> touched;
         auto each_hit = [&](auto&& f) {
-          auto it = hr.begin();
           for (std::size_t x = 0; x < K.size(); ++x) {  // K ascends, and so do its cells' indices
-            const std::uint32_t i = dr[K[x]];
-            it = std::lower_bound(it, hr.end(), std::pair{i, vertex_id{0}});
-            for (; it != hr.end() && it->first == i; ++it) {
-              const vertex_id y = it->second;
+            const auto [from, to] = W.hits_of[K[x]];
+            for (std::size_t h = from; h < to; ++h) {
+              const vertex_id y = hr[h].second;
               if (!on_came[y - n0])
                 f(fresh_points + (y - n0), (std::uint64_t{1} << 32) | y, static_cast<std::uint32_t>(x));
               else if (std::binary_search(W.came_points.begin(), W.came_points.end(), y))
