@@ -1096,6 +1096,17 @@ BOOST_AUTO_TEST_CASE(labels_carry_over_from_another_conform_of_the_same_plc) {
     BOOST_TEST((conformer::label_refined(b, p, b, full, 2).side == full.side), p.source << ": a boundary's own sides not carried");
     const auto [self_half, self_hl] = reversed(b, full, true);
     BOOST_TEST((conformer::label_refined(b, p, self_half, self_hl, 2).side == full.side), p.source << ": a reversed source of the same points not swapped");
+    // the sources kept per number in arrays: numbers with gaps between them (the same in both
+    // boundaries) carry the same sides, and numbers far beyond the faces' count (no conformer's)
+    // are labelled from scratch, with the same sides
+    auto renumbered = [](auto x, std::uint32_t times, std::uint32_t plus) {
+      for (auto& s : x.face_source) s = s * times + plus;
+      return x;
+    };
+    BOOST_TEST((conformer::label_refined(renumbered(b, 7, 3), p, renumbered(coarse, 7, 3), lc, 2).side == full.side),
+               p.source << ": sources numbered with gaps");
+    BOOST_TEST((conformer::label_refined(renumbered(b, 1, 1u << 30), p, renumbered(coarse, 1, 1u << 30), lc, 2).side == full.side),
+               p.source << ": sources numbered far beyond the faces");
   };
   for (bool rotated : {false, true}) {
     const auto p = stack(1, {0, 0.3, 0.35, 1}, rotated);

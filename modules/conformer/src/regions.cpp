@@ -531,92 +531,112 @@ labelling label_refined_impl(const boundary<D>& b, const plc<D>& p, const bounda
       return cross(x.points[F[1]] - x.points[F[0]], x.points[F[2]] - x.points[F[0]]);
   };
   // (the faces come source by source: a source is looked up once per run of its faces, not once
-  // per face; the map's iterators stay valid as it grows). The directions are measured afterwards,
+  // per face). The directions are measured afterwards,
   // and only for a source whose faces differ between the two boundaries: one run in each, face for
   // face the same, is oriented alike whatever its largest face (a refinement round re-triangulates
   // a few facets; measuring every face of both boundaries, serially, was 1.4-1.8 ms a round of the
-  // rotated trench, docs/benchmarks.md, fifty-eighth part)
+  // rotated trench, docs/benchmarks.md, fifty-eighth part). The sources are input facets (PLC
+  // edges in 2D), numbered densely: per source in arrays, where two ordered maps over them were
+  // 16 ms a round of a torus whose 39,700 Gmsh triangles are each a facet (sixty-sixth part)
   struct run {
     std::size_t first, end;
     std::uint32_t id;  // the source
-    entry* source;
   };
-  std::map<std::uint32_t, entry> sides;
+  std::size_t n_sources = 0;
+  for (auto s : before.face_source) n_sources = std::max<std::size_t>(n_sources, std::size_t{s} + 1);
+  for (auto s : b.face_source) n_sources = std::max<std::size_t>(n_sources, std::size_t{s} + 1);
+  // (numbers far beyond the faces' count are no conformer's: labelled in full, as other misfits)
+  if (n_sources > 2 * (before.faces.size() + b.faces.size()) + 1024) return label_impl(b, p, threads);
+  std::vector<entry> sides(n_sources);
+  std::vector<char> known(n_sources, 0);
   std::vector<run> was;  // before's faces, by runs of one source
-  auto it = sides.end();
   for (std::size_t f = 0; f < before.faces.size(); ++f) {
-    if (it == sides.end() || it->first != before.face_source[f]) {
-      it = sides.try_emplace(before.face_source[f], entry{l.side[f]}).first;
-      was.push_back({f, f, it->first, &it->second});
+    const std::uint32_t id = before.face_source[f];
+    if (was.empty() || was.back().id != id) {
+      if (!known[id]) known[id] = 1, sides[id] = entry{l.side[f]};
+      was.push_back({f, f, id});
     }
     was.back().end = f + 1;
-    if (it->second.side != l.side[f]) it->second.side = mixed;
+    if (sides[id].side != l.side[f]) sides[id].side = mixed;
   }
   std::vector<run> of;  // b's faces, by runs of one source
-  it = sides.end();
   for (std::size_t f = 0; f < b.faces.size(); ++f) {
-    if (it == sides.end() || it->first != b.face_source[f]) {
-      it = sides.find(b.face_source[f]);
-      if (it == sides.end() || it->second.side == mixed) return label_impl(b, p, threads);
-      of.push_back({f, f, it->first, &it->second});
+    const std::uint32_t id = b.face_source[f];
+    if (of.empty() || of.back().id != id) {
+      if (!known[id] || sides[id].side == mixed) return label_impl(b, p, threads);
+      of.push_back({f, f, id});
     }
     of.back().end = f + 1;
   }
-  // per source: its runs in each boundary, and whether it has one in each with the same faces (of
-  // the same points: b's points begin with before's, as in the refinement's rounds)
+  // per source: its runs in each boundary (placed by counting, in run order), and whether it has
+  // one in each with the same faces (of the same points: b's points begin with before's, as in
+  // the refinement's rounds)
   const bool same_points = b.points.size() >= before.points.size() &&
                            std::equal(before.points.begin(), before.points.end(), b.points.begin());
-  using runs_pair = std::pair<std::vector<const run*>, std::vector<const run*>>;
-  std::map<std::uint32_t, runs_pair> runs_of;
-  for (const auto& r : was) runs_of[r.id].first.push_back(&r);
-  for (const auto& r : of) runs_of[r.id].second.push_back(&r);
-  std::vector<std::pair<entry*, const runs_pair*>> measure;
-  for (const auto& [id, rs] : runs_of) {
-    if (rs.second.empty()) continue;  // no face of it in b
-    if (same_points && rs.first.size() == 1 && rs.second.size() == 1) {
-      const run &x = *rs.first[0], &y = *rs.second[0];
+  auto by_source = [n_sources](const std::vector<run>& rs, std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& at) {
+    start.assign(n_sources + 1, 0);
+    for (const auto& r : rs) ++start[r.id + 1];
+    for (std::size_t k = 0; k < n_sources; ++k) start[k + 1] += start[k];
+    at.resize(rs.size());
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (std::uint32_t i = 0; i < rs.size(); ++i) at[next[rs[i].id]++] = i;
+  };
+  std::vector<std::uint32_t> was_start, was_at, of_start, of_at;
+  by_source(was, was_start, was_at);
+  by_source(of, of_start, of_at);
+  std::vector<std::uint32_t> measure;  // the sources measured, ascending
+  for (std::uint32_t id = 0; id < n_sources; ++id) {
+    if (of_start[id] == of_start[id + 1]) continue;  // no face of it in b
+    if (same_points && was_start[id + 1] - was_start[id] == 1 && of_start[id + 1] - of_start[id] == 1) {
+      const run &x = was[was_at[was_start[id]]], &y = of[of_at[of_start[id]]];
       if (x.end - x.first == y.end - y.first &&
           std::equal(before.faces.begin() + static_cast<long>(x.first), before.faces.begin() + static_cast<long>(x.end),
                      b.faces.begin() + static_cast<long>(y.first), same_vertices<D>))
         continue;
     }
-    measure.push_back({rs.second[0]->source, &rs});
+    measure.push_back(id);
   }
   // each source's largest face in each boundary (in face order, the first of equal ones), in
   // parallel over the sources
   std::vector<std::size_t> which(measure.size());
   std::iota(which.begin(), which.end(), std::size_t{0});
   std::vector<char> flip(measure.size(), 0), unclear(measure.size(), 0);
+  auto runs_in = [](const std::vector<run>& rs, const std::vector<std::uint32_t>& start, const std::vector<std::uint32_t>& at,
+                    std::uint32_t id, auto&& f) {
+    for (std::uint32_t k = start[id]; k < start[id + 1]; ++k) f(rs[at[k]]);
+  };
   for_each(execution::par(threads), which, [&](std::size_t k) {
-    auto largest = [&](const boundary<D>& x, const std::vector<const run*>& rs, point<D>& dir) {
+    auto largest = [&](const boundary<D>& x, const std::vector<run>& rs, const std::vector<std::uint32_t>& start,
+                       const std::vector<std::uint32_t>& at, point<D>& dir) {
       double len = -1;
-      for (const run* r : rs)
-        for (std::size_t f = r->first; f < r->end; ++f) {
+      runs_in(rs, start, at, measure[k], [&](const run& r) {
+        for (std::size_t f = r.first; f < r.end; ++f) {
           const point<D> d = direction(x, f);
           if (const double n = dot(d, d); n > len) len = n, dir = d;
         }
+      });
       return len;
     };
     point<D> before_dir{}, dir{};
-    const double before_len = largest(before, measure[k].second->first, before_dir), len = largest(b, measure[k].second->second, dir);
+    const double before_len = largest(before, was, was_start, was_at, before_dir), len = largest(b, of, of_start, of_at, dir);
     const double c = dot(dir, before_dir);
     unclear[k] = !(std::abs(c) >= 0.5 * std::sqrt(len) * std::sqrt(before_len));
     flip[k] = c < 0;
   }, [&](std::size_t k) {
     double n = 0;
-    for (const run* r : measure[k].second->first) n += static_cast<double>(r->end - r->first);
-    for (const run* r : measure[k].second->second) n += static_cast<double>(r->end - r->first);
+    runs_in(was, was_start, was_at, measure[k], [&](const run& r) { n += static_cast<double>(r.end - r.first); });
+    runs_in(of, of_start, of_at, measure[k], [&](const run& r) { n += static_cast<double>(r.end - r.first); });
     return n;
   });
   for (std::size_t k = 0; k < measure.size(); ++k) {
     if (unclear[k]) return label_impl(b, p, threads);
-    if (flip[k]) std::swap(measure[k].first->side[0], measure[k].first->side[1]);
+    if (flip[k]) std::swap(sides[measure[k]].side[0], sides[measure[k]].side[1]);
   }
   labelling out;
   out.regions = l.regions;
   out.side.resize(b.faces.size());
   for (const auto& r : of)
-    std::fill(out.side.begin() + static_cast<long>(r.first), out.side.begin() + static_cast<long>(r.end), r.source->side);
+    std::fill(out.side.begin() + static_cast<long>(r.first), out.side.begin() + static_cast<long>(r.end), sides[r.id].side);
   return out;
 }
 
