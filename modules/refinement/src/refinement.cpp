@@ -1347,7 +1347,8 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
   }
   // the gone faces' keys in a hash set, and their vertices marked: a face with an unmarked vertex
   // is no gone face, and is not looked up (a bisection in the sorted keys for each face of every
-  // cell with three marked vertices was a twentieth of the 1e5 trench's cavity search)
+  // cell with three marked vertices was the largest line of the 1e5 trench's cavity search:
+  // docs/benchmarks.md, sixty-sixth part)
   std::vector<char> on_gone(p.size(), 0);
   std::vector<face_t<D>> gone_keys;
   gone_keys.reserve(gone_faces.size());
