@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <span>
 #include <stdexcept>
@@ -105,6 +106,17 @@ struct recent_points {
     for (std::size_t k = 0; k < D; ++k)
       if (b[k] < lo[k] || hi[k] < a[k]) return false;
     return true;
+  }
+  /// False if none lies in the closed box [a, b]: the box test, then (frozen) the points of the
+  /// grid cells that meet it. Growing: the box test alone (true means "may be").
+  bool any_in_box(const point<D>& a, const point<D>& b) const {
+    if (!near_box(a, b)) return false;
+    if (!frozen) return true;
+    return !fixed.visit_box(a, b, [&](vertex_id, const point<D>& q) {
+      for (std::size_t k = 0; k < D; ++k)
+        if (q[k] < a[k] || b[k] < q[k]) return true;
+      return false;
+    });
   }
   /// False if none lies within r of c (the box test; true means "look in the grid").
   bool near(const point<D>& c, double r) const {
@@ -674,6 +686,7 @@ class state {
 
   /// Phase A: split subsegments until none is encroached. Returns the number of splits.
   std::size_t conform_segments() {
+    index_edge_balls();
     std::size_t splits = 0;
     std::vector<vertex_id> ties;
     std::vector<std::uint32_t> ids(edges_.size());
@@ -691,12 +704,31 @@ class state {
       recent_points<D> recent(p[0], grid_h_, true);
       for (std::size_t v = upto; upto > 0 && v < p.size(); ++v) recent.add(static_cast<vertex_id>(v), p[v]);
       recent.freeze();
+      // the edges to look at: all on the first call; after that, those with a subsegment end
+      // inserted since `upto` (want 1), and those whose ball holds a recent point or that are too
+      // long for the index (want 2). The others' subsegments are between old points, and no
+      // recent point lies in the edge's ball, which holds each subsegment's: they are clean.
+      std::vector<char> want(edges_.size(), upto == 0 ? 1 : 0);
+      if (upto > 0) {
+        for (std::uint32_t e : ball_big_) want[e] = 2;
+        for (std::size_t v = upto; v < pass_start; ++v) edges_near(p[v], [&](std::uint32_t e) { want[e] = 2; });
+        for (std::uint32_t e = 0; e < edges_.size(); ++e)
+          if (!want[e])
+            for (vertex_id x : edges_[e].chain)
+              if (x >= upto) {
+                want[e] = 1;
+                break;
+              }
+      }
+      std::vector<std::uint32_t> todo;
+      for (std::uint32_t e = 0; e < edges_.size(); ++e)
+        if (want[e]) todo.push_back(e);
       std::vector<char> encroached(edges_.size(), 0);
-      for_each(execution::par(opt_.threads), ids, [&](std::uint32_t e) {
+      for_each(execution::par(opt_.threads), todo, [&](std::uint32_t e) {
         std::vector<vertex_id> scratch;
         const auto& ch = edges_[e].chain;
         // no recent point near the whole edge: none near a subsegment between old points
-        const bool far = !near_edge(recent, e);
+        const bool far = want[e] != 2 || !near_edge(recent, e);
         for (std::size_t i = 0; i + 1 < ch.size() && !encroached[e]; ++i) {
           const vertex_id a = ch[i], b = ch[i + 1];
           if (a < upto && b < upto) {
@@ -707,10 +739,13 @@ class state {
         }
       }, [&](std::uint32_t e) { return static_cast<double>(edges_[e].chain.size()); });
       // an edge found clean above can be encroached only by a point split in since: it is checked
-      // again only if one of those lies in the closed ball of one of its subsegments
+      // again only if one of those lies in the closed ball of one of its subsegments (so in the
+      // edge's ball: `hit`, or the edge is too long for the index)
       recent_points<D> added(p[0], 2 * grid_h_);
+      std::vector<char> hit(edges_.size(), 0);
+      for (std::uint32_t e : ball_big_) hit[e] = 1;
       auto touched = [&](std::uint32_t e) {
-        if (!near_edge(added, e)) return false;
+        if (!hit[e] || !near_edge(added, e)) return false;
         const auto& ch = edges_[e].chain;
         for (std::size_t i = 0; i + 1 < ch.size(); ++i)
           if (near_subsegment(added, ch[i], ch[i + 1])) return true;
@@ -727,7 +762,10 @@ class state {
           }
           const std::size_t n0 = p.size();
           split_segment(e, i, y);  // then re-check the first half, now at position i
-          for (std::size_t v = n0; v < p.size(); ++v) added.add(static_cast<vertex_id>(v), p[v]);
+          for (std::size_t v = n0; v < p.size(); ++v) {
+            added.add(static_cast<vertex_id>(v), p[v]);
+            edges_near(p[v], [&](std::uint32_t f) { hit[f] = 1; });
+          }
           ++splits;
           again = true;
         }
@@ -738,16 +776,76 @@ class state {
     return splits;
   }
 
-  /// False if no point of g lies near PLC edge e: a ball about the whole edge that holds the
-  /// diametral bound of each of its subsegments (their points lie on the edge up to rounding),
-  /// a prefilter that spares a pass over the edge's subsegments (their balls, each one's box test).
-  bool near_edge(const recent_points<D>& g, std::uint32_t e) const {
-    if (g.empty) return false;
+  /// A ball about PLC edge e that holds the diametral bound of each of its subsegments (their
+  /// points lie on the edge up to rounding): centre and radius.
+  std::pair<point<D>, double> edge_ball(std::uint32_t e) const {
     const auto& p = out_.points;
     const auto& E = edges_[e];
     const point<D> c = 0.5 * (p[E.u] + p[E.v]);
     const double l = distance(p[E.u], p[E.v]);
-    return g.near(c, 0.5 * l * (1 + 1e-6) + 1e-6 * l + 64 * detail::eps * detail::magnitude(c) + 1e-300);
+    return {c, 0.5 * l * (1 + 1e-6) + 1e-6 * l + 64 * detail::eps * detail::magnitude(c) + 1e-300};
+  }
+
+  /// False if no point of g lies near PLC edge e (in the box of all of g's points that meets
+  /// edge_ball(e)): a prefilter that spares a pass over the edge's subsegments (their balls, each
+  /// one's box test).
+  bool near_edge(const recent_points<D>& g, std::uint32_t e) const {
+    if (g.empty) return false;
+    const auto [c, r] = edge_ball(e);
+    return g.near(c, r);
+  }
+
+  /// The PLC edges' balls (edge_ball), which never move, filed in a hash grid by the cells their
+  /// boxes meet, so that a pass asks "which edges' balls hold this recent point" once per point
+  /// instead of a search per edge (a round that adds points all over a curved surface puts every
+  /// edge in the box of the recent points; the torus's 58k edges cost 10 ms a pass that way).
+  /// Edges whose box meets more than 64 cells (long ones, against the cell: the 75th percentile
+  /// of the balls' diameters) are not filed: they go in ball_big_ and are always looked at.
+  void index_edge_balls() {
+    if (ball_grid_ && ball_indexed_ == edges_.size()) return;
+    ball_indexed_ = edges_.size();
+    ball_c_.resize(edges_.size());
+    ball_r2_.resize(edges_.size());
+    ball_big_.clear();
+    std::vector<double> d(edges_.size());
+    for (std::uint32_t e = 0; e < edges_.size(); ++e) {
+      const auto [c, r] = edge_ball(e);
+      ball_c_[e] = c, ball_r2_[e] = r * r, d[e] = 2 * r;
+    }
+    double s = 1;
+    if (!d.empty()) {
+      auto q = d.begin() + static_cast<long>(3 * d.size() / 4);
+      std::nth_element(d.begin(), q, d.end());
+      if (*q > 0 && std::isfinite(*q)) s = *q;
+    }
+    ball_grid_.emplace(out_.points[0], s);
+    for (std::uint32_t e = 0; e < edges_.size(); ++e) {
+      const double r = std::sqrt(ball_r2_[e]);
+      point<D> lo, hi;
+      for (std::size_t k = 0; k < D; ++k) lo[k] = ball_c_[e][k] - r, hi[k] = ball_c_[e][k] + r;
+      const auto a = ball_grid_->cell_of(lo), b = ball_grid_->cell_of(hi);
+      double cells = 1;
+      for (std::size_t k = 0; k < D; ++k) cells *= static_cast<double>(b[k] - a[k] + 1);
+      if (cells > 64) {
+        ball_big_.push_back(e);
+      } else {
+        ball_grid_->insert_box(e, lo, hi);
+      }
+    }
+  }
+
+  /// f(e) for every filed PLC edge whose ball holds q (the same test as near_edge's for one
+  /// point; the edges in ball_big_ are not asked).
+  template <class F>
+  void edges_near(const point<D>& q, F&& f) const {
+    ball_grid_->visit(q, q, [&](std::uint32_t e) {
+      double d2 = 0;
+      for (std::size_t k = 0; k < D; ++k) {
+        const double x = ball_c_[e][k] - q[k];
+        d2 += x * x;
+      }
+      if (d2 <= ball_r2_[e]) f(e);
+    });
   }
 
   /// Whether a point of g lies in the closed diametral ball of subsegment ab (a tie counts).
@@ -775,6 +873,11 @@ class state {
   std::map<std::pair<vertex_id, vertex_id>, std::uint32_t> edge_index_;
   std::map<vertex_id, std::vector<std::uint32_t>> vertex_edges_;
   std::size_t segments_clean_upto_ = 0;  // points when conform_segments last returned
+  std::optional<hash_grid<D>> ball_grid_;  // index_edge_balls: PLC edges by their balls' cells
+  std::size_t ball_indexed_ = 0;           // edges_.size() when it was built
+  std::vector<point<D>> ball_c_;           // per PLC edge: edge_ball's centre
+  std::vector<double> ball_r2_;            // and squared radius
+  std::vector<std::uint32_t> ball_big_;    // edges not filed (their boxes meet too many cells)
   std::vector<char> acute_;               // per PLC vertex: a small angle meets there (find_acute)
   std::vector<double> ball_;              // per PLC vertex: radius of its protecting ball, 0 for none
   std::vector<char> ball_wanted_;         // 3D, per PLC vertex: it gets a protecting ball (find_acute3)
@@ -1530,14 +1633,16 @@ class state3 : public state<3> {
     auto check = [&](const range& w) {
       auto& S = facets_[w.f];
       const std::size_t k = static_cast<std::size_t>(&w - work.data());
-      // a quiet piece of a facet not triangulated since, with no new point near: still quiet
-      // (after a local rewrap: a piece with no new triangle, as it was then)
+      // a quiet piece of a facet not triangulated since, with no new point in its box of balls:
+      // still quiet (after a local rewrap: a piece with no new triangle, as it was then). The
+      // points themselves are asked, not only their bounding box: a round that adds points all
+      // over a curved surface has every piece in that box (the torus's 40k one-triangle facets)
       const bool local = S.checked && !S.fresh.empty();
       const std::size_t at = w.a / piece;
       if (S.checked && at < S.pieces.size() && S.pieces[at].quiet &&
           (!local || std::find(S.fresh.begin() + static_cast<long>(w.a), S.fresh.begin() + static_cast<long>(w.b), 1) ==
                          S.fresh.begin() + static_cast<long>(w.b)) &&
-          !recent.near_box(S.pieces[at].lo, S.pieces[at].hi)) {
+          !recent.any_in_box(S.pieces[at].lo, S.pieces[at].hi)) {
         summary[k] = S.pieces[at];
         return;
       }
