@@ -336,7 +336,10 @@ sizing::aabb<D> face_box(const std::vector<point<D>>& p, const std::array<vertex
 /// each axis (with cells of one power of two, r < cell <= 2r, it spanned two or three: up to 27
 /// probes of the hash table, most of them empty; the round's accept loop is serial, and these
 /// queries were its largest symbol in a 2-thread trench run: docs/benchmarks.md, sixty-fifth
-/// part). The answer is the same whatever the cells.
+/// part). The answer is the same whatever the cells. A level's grid takes the points added since
+/// its last query when it is next asked, not at add(): the round asks in falling radius, so the
+/// coarse levels stop early and never see the later points (scad_example009: the inserts into
+/// every level were a second of its serial accept loops; docs/benchmarks.md, sixty-seventh part).
 template <std::size_t D>
 class accepted_points {
  public:
@@ -348,25 +351,25 @@ class accepted_points {
       slot_[static_cast<std::size_t>(k - first_)] = static_cast<std::uint32_t>(grids_.size());
       grids_.emplace_back(origin, std::ldexp(1.0, k + 1));
     }
+    filled_.assign(grids_.size(), 0);
   }
   static int level(double r) { return std::ilogb(r) + 1; }
   /// r's level must be among those given.
-  bool any_within(const point<D>& c, double r) const {
-    const auto& g = grids_[slot_[static_cast<std::size_t>(level(r) - first_)]];
+  bool any_within(const point<D>& c, double r) {
+    const std::uint32_t s = slot_[static_cast<std::size_t>(level(r) - first_)];
+    auto& g = grids_[s];
+    for (auto& i = filled_[s]; i < points_.size(); ++i) g.insert(i, points_[i]);
     point<D> lo, hi;
     for (std::size_t k = 0; k < D; ++k) lo[k] = c[k] - r, hi[k] = c[k] + r;
     return !g.visit(lo, hi, [&](std::uint32_t i) { return !(squared_distance(points_[i], c) < r * r); });
   }
-  void add(const point<D>& c) {
-    const auto i = static_cast<std::uint32_t>(points_.size());
-    points_.push_back(c);
-    for (auto& g : grids_) g.insert(i, c);
-  }
+  void add(const point<D>& c) { points_.push_back(c); }
 
  private:
   int first_ = 0;                    // the lowest level
   std::vector<std::uint32_t> slot_;  // per level from first_: its grid's place in grids_
   std::vector<hash_grid<D>> grids_;
+  std::vector<std::uint32_t> filled_;  // per grid: the points filed in it (the first ones)
   std::vector<point<D>> points_;
 };
 
@@ -827,13 +830,11 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
   // test: the liner's thousands of bad elements lie at its walls and all encroach)
   {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> who;  // (chunk, index)
-    std::vector<sizing::aabb<D>> spot;
+    std::vector<point<D>> spot;  // their circumcentres
     for (std::uint32_t k = 0; k < found.size(); ++k)
       for (std::uint32_t i = 0; i < found[k].size(); ++i) {
         who.push_back({k, i});
-        auto box = sizing::aabb<D>::empty();
-        box.add(found[k][i].c);
-        spot.push_back(box);
+        spot.push_back(found[k][i].c);
       }
     if (!who.empty()) {
       // pieces of 512 faces (the cells' 4096 made about 9 pieces of the 1e5 trench's faces, whose
@@ -842,14 +843,16 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       std::vector<std::size_t> pieces((b.faces.size() + face_piece - 1) / face_piece);
       std::iota(pieces.begin(), pieces.end(), std::size_t{0});
       {
-        const box_grid<D> centres(spot);
+        // a point grid, nested where the circumcentres crowd (a box grid over them read
+        // thousands of crowded candidates per face near the small angles of scad_example009:
+        // docs/benchmarks.md, sixty-seventh part)
+        const geometry::point_grid<D> centres{std::span<const point<D>>(spot)};
         std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> hits(pieces.size());  // (candidate, face)
         for_each(execution::par(threads), pieces, [&](std::size_t q) {
           for (std::size_t f = q * face_piece; f < std::min(b.faces.size(), (q + 1) * face_piece); ++f) {
             const auto& F = b.faces[f];
             const auto box = face_box(bp, F);
-            centres.visit(box, [&](std::uint32_t g) {
-              const point<D>& at = found[who[g].first][who[g].second].c;
+            auto test = [&](vertex_id g, const point<D>& at) {
               if (box.contains(at)) {
                 int s;
                 if constexpr (D == 2)
@@ -859,7 +862,14 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
                 if (s >= 0) hits[q].push_back({g, static_cast<std::uint32_t>(f)});
               }
               return true;
-            });
+            };
+            bool finite_box = true;  // a degenerate face's ball has no bounds: every candidate is asked
+            for (std::size_t k = 0; k < D; ++k) finite_box = finite_box && !std::isnan(box.lo[k]) && !std::isnan(box.hi[k]);
+            if (finite_box) {
+              centres.visit_box(box.lo, box.hi, test);
+            } else {
+              for (std::uint32_t g = 0; g < spot.size(); ++g) test(g, spot[g]);
+            }
           }
         });
         // each candidate's faces, ascending: grouped by counting (the pieces hold ascending faces,
