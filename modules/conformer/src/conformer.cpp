@@ -689,8 +689,6 @@ class state {
     index_edge_balls();
     std::size_t splits = 0;
     std::vector<vertex_id> ties;
-    std::vector<std::uint32_t> ids(edges_.size());
-    std::iota(ids.begin(), ids.end(), 0u);
     std::size_t upto = segments_clean_upto_;
     for (bool again = true; again;) {
       again = false;
