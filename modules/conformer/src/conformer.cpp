@@ -749,11 +749,20 @@ class state {
           if (near_subsegment(added, ch[i], ch[i + 1])) return true;
         return false;
       };
+      // A subsegment between points older than `upto` is encroached only by a point of `recent`
+      // or `added` in its closed ball (as in the parallel pass above): one without is not searched
+      // again. (Each encroached edge's subsegments were all searched here, and an edge of hundreds
+      // of them by a small input angle was searched whole for each split: on occ_pump_nut at
+      // --quality 1.414 these searches were a fifth of the run, all on one thread;
+      // docs/benchmarks.md, sixty-eighth part)
+      auto clean_since = [&](vertex_id a, vertex_id b) {
+        return a < upto && b < upto && !near_subsegment(recent, a, b) && (added.empty || !near_subsegment(added, a, b));
+      };
       for (std::uint32_t e = 0; e < edges_.size(); ++e) {
         if (!encroached[e] && (added.empty || !touched(e))) continue;
         for (std::size_t i = 0; i + 1 < edges_[e].chain.size();) {
-          const vertex_id y =
-              protected_subsegment(e, i) ? no_vertex : segment_encroacher(edges_[e].chain[i], edges_[e].chain[i + 1], ties);
+          const vertex_id a = edges_[e].chain[i], b = edges_[e].chain[i + 1];
+          const vertex_id y = protected_subsegment(e, i) || clean_since(a, b) ? no_vertex : segment_encroacher(a, b, ties);
           if (y == no_vertex) {
             ++i;
             continue;
