@@ -606,33 +606,54 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       std::vector<std::pair<std::uint64_t, vertex_id>> around;
       for (const auto& a : around_in) around.insert(around.end(), a.begin(), a.end());
       gsse::stable_sort(execution::par(threads), around.begin(), around.end());
-      std::vector<vertex_id> thirds;
-      for (std::size_t at = 0; at < around.size();) {
-        const std::uint64_t key = around[at].first;
-        thirds.clear();
-        for (; at < around.size() && around[at].first == key; ++at) thirds.push_back(around[at].second);
-        if (thirds.size() < 2) continue;
-        const auto u = static_cast<vertex_id>(key >> 32), v = static_cast<vertex_id>(key & 0xffffffffu);
-        const point<D> d = p[v] - p[u];
-        const double dd = dot(d, d);
+      // the groups in pieces of about `piece` entries (cut between groups), in parallel; the
+      // pieces' sharp subsegments in piece order, as one pass in order lists them (a serial pass,
+      // 0.47 s of scad_example009's plans; docs/benchmarks.md, sixty-eighth part)
+      std::vector<std::pair<std::size_t, std::size_t>> spans;
+      for (std::size_t a = 0; a < around.size();) {
+        std::size_t e = std::min(around.size(), a + piece);
+        while (e < around.size() && around[e].first == around[e - 1].first) ++e;
+        spans.push_back({a, e});
+        a = e;
+      }
+      std::vector<std::vector<sharp_piece>> sharp_in(spans.size());
+      std::vector<std::vector<sizing::aabb<D>>> boxes_in(spans.size());
+      std::vector<std::size_t> span_ids(spans.size());
+      std::iota(span_ids.begin(), span_ids.end(), std::size_t{0});
+      for_each(execution::par(threads), span_ids, [&](std::size_t q) {
+        std::vector<vertex_id> thirds;
         std::vector<point<D>> dirs;
-        for (vertex_id w : thirds) {
-          point<D> x = p[w] - p[u];
-          x = x - (dot(x, d) / dd) * d;
-          const double n = std::sqrt(dot(x, x));
-          if (n > 0) dirs.push_back((1 / n) * x);
+        for (std::size_t at = spans[q].first; at < spans[q].second;) {
+          const std::uint64_t key = around[at].first;
+          thirds.clear();
+          for (; at < spans[q].second && around[at].first == key; ++at) thirds.push_back(around[at].second);
+          if (thirds.size() < 2) continue;
+          const auto u = static_cast<vertex_id>(key >> 32), v = static_cast<vertex_id>(key & 0xffffffffu);
+          const point<D> d = p[v] - p[u];
+          const double dd = dot(d, d);
+          dirs.clear();
+          for (vertex_id w : thirds) {
+            point<D> x = p[w] - p[u];
+            x = x - (dot(x, d) / dd) * d;
+            const double n = std::sqrt(dot(x, x));
+            if (n > 0) dirs.push_back((1 / n) * x);
+          }
+          bool thin = false;
+          for (std::size_t i = 0; i < dirs.size() && !thin; ++i)
+            for (std::size_t j = i + 1; j < dirs.size(); ++j)
+              if (dot(dirs[i], dirs[j]) > 0.5) thin = true;
+          if (!thin) continue;
+          const double reach = acute_guard * std::sqrt(dd);
+          sharp_in[q].push_back({u, v, reach});
+          auto box = sizing::aabb<D>::empty();
+          box.add(p[u]), box.add(p[v]);
+          for (std::size_t k = 0; k < D; ++k) box.lo[k] -= reach, box.hi[k] += reach;
+          boxes_in[q].push_back(box);
         }
-        bool thin = false;
-        for (std::size_t i = 0; i < dirs.size() && !thin; ++i)
-          for (std::size_t j = i + 1; j < dirs.size(); ++j)
-            if (dot(dirs[i], dirs[j]) > 0.5) thin = true;
-        if (!thin) continue;
-        const double reach = acute_guard * std::sqrt(dd);
-        sharp.push_back({u, v, reach});
-        auto box = sizing::aabb<D>::empty();
-        box.add(p[u]), box.add(p[v]);
-        for (std::size_t k = 0; k < D; ++k) box.lo[k] -= reach, box.hi[k] += reach;
-        sharp_boxes.push_back(box);
+      }, [&](std::size_t q) { return static_cast<double>(spans[q].second - spans[q].first); });
+      for (std::size_t q = 0; q < spans.size(); ++q) {
+        sharp.insert(sharp.end(), sharp_in[q].begin(), sharp_in[q].end());
+        sharp_boxes.insert(sharp_boxes.end(), boxes_in[q].begin(), boxes_in[q].end());
       }
     }
   }
@@ -941,7 +962,10 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
         if (const std::size_t e = near_sharp(m); e < sharp.size()) return sharp[e].a;
         return no_vertex;
       };
-      for (std::size_t k = 0; k < found.size(); ++k) {
+      // each chunk's candidates apart, in parallel (serial, 0.34 s of scad_example009's plans)
+      std::vector<std::size_t> chunk_ids(found.size());
+      std::iota(chunk_ids.begin(), chunk_ids.end(), std::size_t{0});
+      for_each(execution::par(threads), chunk_ids, [&](std::size_t k) {
         std::size_t keep = 0;
         for (std::size_t i = 0; i < found[k].size(); ++i) {
           const auto& x = found[k][i];
@@ -952,7 +976,7 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
           else found[k][keep++] = x;
         }
         found[k].resize(keep);
-      }
+      }, [&](std::size_t k) { return static_cast<double>(found[k].size()); });
     }
   }
   // in order of decreasing circumradius r (ties: by position), each at least `apart` x r from the
@@ -1708,46 +1732,103 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     auto& W = by_region[r];
     // the faces of the dead cells, by key: a face met twice (by two dead cells, facing opposite
     // ways) is inside the cavity, once is on its boundary
-    std::vector<std::pair<packed_key<D>, face_t<D>>> met;  // (key, face facing into the dead cell)
-    for (const auto i : dead_at[r]) {
-      ++W.removed;
-      for (const auto& g : faces_into<D>(cells[r][i])) met.push_back({pack<D>(key_of<D>(g)), g});
-    }
-    // faces paired by key in an open-addressing table (sorting every face by key was most of this
-    // step); those met once are sorted by key: the cavity's boundary
-    std::size_t cap = 16;
-    while (cap < 2 * met.size()) cap *= 2;
+    // (in slices, in parallel: a region is often the whole model, and these steps were a serial
+    // second of scad_example009's rounds; docs/benchmarks.md, sixty-eighth part)
+    const std::size_t nd = dead_at[r].size();
+    W.removed += nd;
+    constexpr std::size_t slice = 4096;
+    std::vector<std::size_t> slices((nd + slice - 1) / slice);
+    std::iota(slices.begin(), slices.end(), std::size_t{0});
+    std::vector<std::pair<packed_key<D>, face_t<D>>> met((D + 1) * nd);  // (key, face facing into the dead cell)
+    for_each(execution::par(threads), slices, [&](std::size_t q) {
+      for (std::size_t k = q * slice; k < std::min(nd, (q + 1) * slice); ++k) {
+        const auto fs = faces_into<D>(cells[r][dead_at[r][k]]);
+        for (std::size_t i = 0; i <= D; ++i) met[(D + 1) * k + i] = {pack<D>(key_of<D>(fs[i])), fs[i]};
+      }
+    });
+    // faces paired by key in open-addressing tables (sorting every face by key was most of this
+    // step); those met once are sorted by key: the cavity's boundary. The faces go to 2^bits
+    // parts by their hash's top bits, each part paired on its own, in parallel: a key's faces all
+    // go to one part in their order, and what the pairing finds for a key depends on those alone
     constexpr std::uint32_t none = ~std::uint32_t{0};
-    std::vector<std::uint32_t> table(cap, none);
-    std::vector<char> twice(met.size(), 0);
-    if (inserting) W.mate.assign(met.size(), none);
-    for (std::uint32_t i = 0; i < met.size(); ++i) {
-      const packed_key<D> k = met[i].first;
-      std::uint64_t h = static_cast<std::uint64_t>(k);
-      if constexpr (D == 3) h ^= static_cast<std::uint64_t>(k >> 64) * 0xC2B2AE3D27D4EB4Full;
-      std::size_t at = static_cast<std::size_t>((h * 0x9E3779B97F4A7C15ull) >> 20) & (cap - 1);
-      for (;; at = (at + 1) & (cap - 1)) {
-        const std::uint32_t j = table[at];
-        if (j == none) {
-          table[at] = i;
-          break;
-        }
-        if (met[j].first != k) continue;
-        if (!inner0[r].empty() && std::binary_search(inner0[r].begin(), inner0[r].end(), k)) {
-          if (parity(met[j].second) == parity(met[i].second)) {
-            W.ok = false;  // two dead cells on one side of a face
+    const auto m = static_cast<std::uint32_t>(met.size());
+    std::vector<std::uint64_t> hashed(m);
+    const std::vector<std::size_t> face_slices = [&] {
+      std::vector<std::size_t> v((m + slice - 1) / slice);
+      std::iota(v.begin(), v.end(), std::size_t{0});
+      return v;
+    }();
+    for_each(execution::par(threads), face_slices, [&](std::size_t q) {
+      for (std::size_t i = q * slice; i < std::min<std::size_t>(m, (q + 1) * slice); ++i) {
+        const packed_key<D> k = met[i].first;
+        std::uint64_t h = static_cast<std::uint64_t>(k);
+        if constexpr (D == 3) h ^= static_cast<std::uint64_t>(k >> 64) * 0xC2B2AE3D27D4EB4Full;
+        hashed[i] = h * 0x9E3779B97F4A7C15ull;
+      }
+    });
+    const int bits = m < (1u << 16) ? 0 : 6;
+    const std::size_t parts = std::size_t{1} << bits;
+    auto part_of = [&](std::uint32_t i) { return bits == 0 ? std::size_t{0} : static_cast<std::size_t>(hashed[i] >> (64 - bits)); };
+    // each part's faces, ascending: counted per slice, then placed
+    std::vector<std::uint32_t> by_part(m);
+    std::vector<std::size_t> part_at(parts + 1, 0);
+    {
+      std::vector<std::vector<std::uint32_t>> counts(face_slices.size(), std::vector<std::uint32_t>(parts, 0));
+      for_each(execution::par(threads), face_slices, [&](std::size_t q) {
+        for (std::size_t i = q * slice; i < std::min<std::size_t>(m, (q + 1) * slice); ++i) ++counts[q][part_of(static_cast<std::uint32_t>(i))];
+      });
+      std::vector<std::vector<std::size_t>> next(face_slices.size(), std::vector<std::size_t>(parts));
+      std::size_t at = 0;
+      for (std::size_t g = 0; g < parts; ++g) {
+        part_at[g] = at;
+        for (std::size_t q = 0; q < face_slices.size(); ++q) next[q][g] = at, at += counts[q][g];
+      }
+      part_at[parts] = at;
+      for_each(execution::par(threads), face_slices, [&](std::size_t q) {
+        for (std::size_t i = q * slice; i < std::min<std::size_t>(m, (q + 1) * slice); ++i) by_part[next[q][part_of(static_cast<std::uint32_t>(i))]++] = static_cast<std::uint32_t>(i);
+      });
+    }
+    std::vector<char> twice(m, 0);
+    if (inserting) W.mate.assign(m, none);
+    std::vector<char> part_failed(parts, 0);
+    std::vector<std::size_t> part_ids(parts);
+    std::iota(part_ids.begin(), part_ids.end(), std::size_t{0});
+    for_each(execution::par(threads), part_ids, [&](std::size_t g) {
+      const std::size_t first = part_at[g], count = part_at[g + 1] - first;
+      std::size_t cap = 16;
+      while (cap < 2 * count) cap *= 2;
+      std::vector<std::uint32_t> table(cap, none);
+      for (std::size_t x = first; x < first + count; ++x) {
+        const std::uint32_t i = by_part[x];
+        const packed_key<D> k = met[i].first;
+        std::size_t at = static_cast<std::size_t>(hashed[i] >> 20) & (cap - 1);
+        for (;; at = (at + 1) & (cap - 1)) {
+          const std::uint32_t j = table[at];
+          if (j == none) {
+            table[at] = i;
+            break;
+          }
+          if (met[j].first != k) continue;
+          if (!inner0[r].empty() && std::binary_search(inner0[r].begin(), inner0[r].end(), k)) {
+            if (parity(met[j].second) == parity(met[i].second)) {
+              part_failed[g] = 1;  // two dead cells on one side of a face
+              return;
+            }
+            break;  // both sides stay on the cavity's boundary
+          }
+          if (twice[j] || parity(met[j].second) == parity(met[i].second)) {
+            part_failed[g] = 1;  // two dead cells on one side of a face
             return;
           }
-          break;  // both sides stay on the cavity's boundary
+          twice[j] = twice[i] = 1;
+          if (inserting) W.mate[i] = j, W.mate[j] = i;
+          break;
         }
-        if (twice[j] || parity(met[j].second) == parity(met[i].second)) {
-          W.ok = false;  // two dead cells on one side of a face
-          return;
-        }
-        twice[j] = twice[i] = 1;
-        if (inserting) W.mate[i] = j, W.mate[j] = i;
-        break;
       }
+    }, [&](std::size_t g) { return static_cast<double>(part_at[g + 1] - part_at[g]); });
+    if (std::find(part_failed.begin(), part_failed.end(), 1) != part_failed.end()) {
+      W.ok = false;
+      return;
     }
     if (inserting && inner0[r].empty() && inner1[r].empty()) {  // the cavities: dead cells meeting at faces
       W.insertable = true;
@@ -2099,16 +2180,21 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       for (auto v : c) g = g + p[v];
       return morton_code<D>((1.0 / (D + 1)) * g, all_lo, all_hi, bits);
     };
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> fresh, slots;  // (code, new cell) and (code, dead place)
     std::vector<const cell_t<D>*> made_cells;
     for (std::size_t t = region_first[r]; t < region_first[r + 1]; ++t)
-      for (const auto& c : made[t]) {
-        fresh.push_back({code(c), static_cast<std::uint32_t>(made_cells.size())});
-        made_cells.push_back(&c);
-      }
+      for (const auto& c : made[t]) made_cells.push_back(&c);
     added[r] = made_cells.size();
     const std::size_t old_size = cs.size();
-    for (const auto i : dead_at[r]) slots.push_back({code(cs[i]), i});
+    // the codes in slices, in parallel (a region is often the whole model: serial, these were
+    // half a second of scad_example009's rounds; docs/benchmarks.md, sixty-eighth part)
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> fresh(made_cells.size()), slots(dead_at[r].size());  // (code, new cell) and (code, dead place)
+    constexpr std::size_t slice = 4096;
+    std::vector<std::size_t> slices((std::max(fresh.size(), slots.size()) + slice - 1) / slice);
+    std::iota(slices.begin(), slices.end(), std::size_t{0});
+    for_each(execution::par(threads), slices, [&](std::size_t q) {
+      for (std::size_t k = q * slice; k < std::min(fresh.size(), (q + 1) * slice); ++k) fresh[k] = {code(*made_cells[k]), static_cast<std::uint32_t>(k)};
+      for (std::size_t k = q * slice; k < std::min(slots.size(), (q + 1) * slice); ++k) slots[k] = {code(cs[dead_at[r][k]]), dead_at[r][k]};
+    });
     radix_sort(fresh);  // both built in index order: std::sort's order of the pairs
     radix_sort(slots);
     // blocks of the code holding about 64 cells: 2^(D L) blocks for L levels
