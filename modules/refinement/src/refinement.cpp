@@ -1661,15 +1661,20 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       for (std::size_t j = i + 1; j < D; ++j) n += f[i] > f[j];
     return n % 2;
   };
+  using oriented_key = std::pair<packed_key<D>, int>;
+  auto oriented = [&](const face_t<D>& f) { return oriented_key{pack<D>(key_of<D>(f)), parity(f)}; };
   // a region's front (the faces of its dead cells met once, less the gone faces, plus the new
-  // boundary faces on its side) in connected pieces, batched into tasks for the front mesher
-  auto make_front = [&](std::size_t r) {
+  // boundary faces on its side) in connected pieces, batched into tasks for the front mesher.
+  // `only`, for a region insertion filled but for some cavities: the dead cells of those (by
+  // place in the region's dead cells), whose front is theirs alone (cavities share no face), and
+  // `rest`: the new boundary faces the other cavities did not end with, theirs (sorted)
+  auto make_front = [&](std::size_t r, const std::vector<char>* only = nullptr, const std::vector<oriented_key>* rest = nullptr) {
     auto& W = by_region[r];
     const auto met = std::move(W.met);
     const auto twice = std::move(W.twice);
     std::vector<std::pair<packed_key<D>, face_t<D>>> once;
     for (std::uint32_t i = 0; i < met.size(); ++i)
-      if (!twice[i]) once.push_back(met[i]);
+      if (!twice[i] && (!only || (*only)[i / (D + 1)])) once.push_back(met[i]);
     std::sort(once.begin(), once.end(), [](const auto& x, const auto& y) { return x.first < y.first || (x.first == y.first && x.second < y.second); });
     std::vector<std::pair<face_t<D>, face_t<D>>> open;  // sorted by key
     open.reserve(once.size());
@@ -1683,6 +1688,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
           // a face with the region on both sides is there twice, once facing each way
           while (it != open.end() && it->first == key && gone_here[static_cast<std::size_t>(it - open.begin())]) ++it;
           if (it == open.end() || it->first != key) {
+            if (only) continue;  // a face a filled cavity's cell rested on
             W.ok = false;
             return;
           }
@@ -1692,11 +1698,19 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     for (std::size_t i = 0; i < open.size(); ++i)
       if (!gone_here[i]) keyed.push_back(open[i]);
     const std::size_t kept = keyed.size();
+    std::vector<char> rest_taken(rest ? rest->size() : 0, 0);
     for (std::size_t f : came_faces)
       for (int side = 0; side < 2; ++side)
         if (l1.side[f][static_cast<std::size_t>(side)] == static_cast<int>(r)) {
           auto F = b1.faces[f];
           if (side == 1) std::swap(F[0], F[1]);
+          if (rest) {  // one of `rest`, not taken yet
+            const auto o = oriented(F);
+            auto it = std::lower_bound(rest->begin(), rest->end(), o);
+            while (it != rest->end() && *it == o && rest_taken[static_cast<std::size_t>(it - rest->begin())]) ++it;
+            if (it == rest->end() || *it != o) continue;
+            rest_taken[static_cast<std::size_t>(it - rest->begin())] = 1;
+          }
           keyed.push_back({key_of<D>(F), F});
         }
     std::sort(keyed.begin() + static_cast<long>(kept), keyed.end());
@@ -2019,9 +2033,13 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         out.cells = cav.cells();
         out.walls = cav.droppable_walls();
       }, [&](const job& jb) { return static_cast<double>(by_region[jb.region].components[jb.component].size()); });
-      // each region: every cavity filled, and the walls left exactly the new boundary faces
-      auto oriented = [&](const face_t<D>& f) { return std::pair{pack<D>(key_of<D>(f)), parity(f)}; };
-      std::vector<char> filled(cells.size(), 0);
+      // each region: every cavity filled, and the walls left exactly the new boundary faces. Or
+      // some cavities not (their insertion failed), and the others' walls among the new boundary
+      // faces: those cavities alone go to the front mesher, with the new boundary faces left
+      // (one cavity of scad_example009 sent the whole model to the front mesher in 13 rounds;
+      // docs/benchmarks.md, sixty-eighth part)
+      std::vector<char> filled(cells.size(), 0), partly(cells.size(), 0);
+      std::vector<std::vector<oriented_key>> rest(cells.size());
       std::vector<std::pair<std::size_t, std::size_t>> jobs_of(cells.size(), {0, 0});
       std::vector<std::size_t> checked;  // the insertable regions
       for (std::size_t r = 0, j = 0; r < cells.size(); ++r) {
@@ -2044,6 +2062,12 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         std::sort(left.begin(), left.end());
         std::sort(want.begin(), want.end());
         filled[r] = good && left == want;
+        bool some = false;  // a cavity filled
+        for (std::size_t j = jobs_of[r].first; j < jobs_of[r].second && !some; ++j) some = results[j].ok;
+        if (!good && some && std::includes(want.begin(), want.end(), left.begin(), left.end())) {
+          partly[r] = 1;
+          std::set_difference(want.begin(), want.end(), left.begin(), left.end(), std::back_inserter(rest[r]));
+        }
       }, [&](std::size_t r) { return static_cast<double>(by_region[r].came.size()); });
       // every free new point in a cell of a filled region, or held by a ball of a region the
       // front mesher fills (its own, as far as this round can tell): else that point was left out
@@ -2051,6 +2075,29 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       // fills every region
       std::vector<char> placed(p.size() - n0, 0);
       for (std::size_t r = 0; r < cells.size(); ++r) {
+        if (partly[r]) {
+          // a free point lies in the cavity whose cell holds it, and that cell's ball holds it:
+          // one that a filled cavity's balls held but that cavity left out, and that a cavity of
+          // the front mesher's may hold, is not known to be placed: then the front mesher fills
+          // the whole region, as before
+          std::vector<char> seen(p.size() - n0, 0);  // 1: inserted, 2: held by a filled cavity, 4: by another
+          const auto& W = by_region[r];
+          for (std::size_t k = jobs_of[r].first; k < jobs_of[r].second; ++k) {
+            for (const auto& c : results[k].cells)
+              for (auto v : c)
+                if (v >= n0) seen[v - n0] |= 1;
+            for (const auto x : W.components[jobs[k].component])
+              for (std::size_t h = W.hits_of[x].first; h < W.hits_of[x].second; ++h)
+                seen[hits_at[r][h].second - n0] |= static_cast<char>(results[k].ok ? 2 : 4);
+          }
+          for (std::size_t y = 0; y < seen.size() && partly[r]; ++y)
+            if (seen[y] == 6) partly[r] = 0;
+          if (partly[r]) {
+            for (std::size_t y = 0; y < seen.size(); ++y)
+              if (seen[y] & 5) placed[y] = 1;
+            continue;
+          }
+        }
         if (filled[r]) {
           for (std::size_t k = jobs_of[r].first; k < jobs_of[r].second; ++k)
             for (const auto& c : results[k].cells)
@@ -2065,6 +2112,19 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
       for (std::size_t r = 0; r < cells.size(); ++r) {
         auto& W = by_region[r];
         if (!W.insertable) continue;
+        if (partly[r] && all_placed) {
+          std::vector<char> only(dead_at[r].size(), 0);
+          for (std::size_t k = jobs_of[r].first; k < jobs_of[r].second; ++k)
+            if (!results[k].ok)
+              for (const auto x : W.components[jobs[k].component]) only[x] = 1;
+          W.tasks.clear();
+          make_front(r, &only, &rest[r]);  // its tasks first, then the filled cavities' cells
+          task t{r, {}, {}, std::vector<cell_t<D>>{}};
+          for (std::size_t k = jobs_of[r].first; k < jobs_of[r].second; ++k)
+            t.inserted->insert(t.inserted->end(), results[k].cells.begin(), results[k].cells.end());
+          W.tasks.push_back(std::move(t));
+          continue;
+        }
         if (!filled[r] || !all_placed) {
           unfilled.push_back(r);
           continue;
@@ -2078,7 +2138,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
     }
   }
   {  // the regions insertion did not fill: their fronts, for the front mesher
-    for_each(execution::par(threads), unfilled, make_front, [&](std::size_t r) { return static_cast<double>(by_region[r].met.size()); });
+    for_each(execution::par(threads), unfilled, [&](std::size_t r) { make_front(r); }, [&](std::size_t r) { return static_cast<double>(by_region[r].met.size()); });
     for (const auto& W : by_region)
       if (!W.ok) return false;
   }
