@@ -342,3 +342,30 @@ BOOST_AUTO_TEST_CASE(vertices_inside_a_smooth_surface_get_no_protecting_ball) {
   const std::size_t sharp = conform_and_check(icosphere(0), {}, 0.0, "icosahedron");
   BOOST_TEST(sharp >= 60u, sharp << " Steiner points");
 }
+
+BOOST_AUTO_TEST_CASE(obtuse_corner_of_a_smooth_surface_splits_nothing) {
+  // A triangle facet of a smooth surface with an obtuse corner: that corner lies in the diametral
+  // ball of the opposite edge, but the facet is convex there and both triangles through the edge
+  // have empty balls, so the edge is a Delaunay edge and nothing needs a split
+  // (docs/design-decisions.md, "Subsegments of a smooth surface are not split for their own
+  // facets' corners"). Splitting it, as every encroached subsegment was, started shells about its
+  // ends: 49 Steiner points here, 45,145 on a Gmsh torus whose 38,974 triangles have 74 such
+  // corners (bench/surface_torus.sh), 1,159 now.
+  auto p = icosphere(3);
+  const auto& T = p.facets[0].polygons[0];
+  const vertex_id a = T[0], b = T[1], c = T[2];
+  const point3 mid = 0.5 * (p.points[a] + p.points[b]);
+  point3 q = p.points[c] + 0.5 * (mid - p.points[c]);
+  p.points[c] = (1 / std::sqrt(dot(q, q))) * q;
+  const point3 u = p.points[a] - p.points[c], v = p.points[b] - p.points[c];
+  BOOST_TEST_REQUIRE(dot(u, v) < 0, "the corner at c is obtuse");
+  const auto bo = cf::conform(p, {}, cf::options{});
+  BOOST_TEST(bo.steiner == 0u, bo.steiner << " Steiner points");
+  BOOST_TEST(cf::encroached(bo).empty());
+  const auto oracle = test::encroachment_oracle(bo);
+  BOOST_TEST(oracle.strictly_encroached.empty());
+  BOOST_TEST(oracle.not_delaunay == 0u, oracle.not_delaunay << " subfacets are not faces of CGAL's Delaunay triangulation");
+  // the case is the one above: the edge (a, b) is encroached, by c, and left as it is
+  BOOST_TEST(oracle.encroached_subsegments >= 1u);
+  BOOST_CHECK_NO_THROW(cf::label(bo, p));
+}

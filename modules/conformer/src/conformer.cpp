@@ -335,6 +335,7 @@ class state {
   /// down to 1e-9 from it (26 halvings, 3,469 point pairs closer than 1e-5 in the mesh; with a
   /// ball there, 21). docs/design-decisions.md, "A margin over 60 degrees for small angles in 3D".
   static constexpr double acute_cos = D == 3 ? 0.46947156278589086 : 0.5;  // cos 62, cos 60
+  static constexpr std::uint32_t no_edge = ~std::uint32_t{0};
   static constexpr double acute_sin = 0.8829475928589269;                 // sin 62 (3D only)
   /// 3D: facets meeting at an edge fold by less than this (15 degrees, cos) are a smooth surface
   /// there; a vertex all of whose edges are such gets no protecting ball for its small angles
@@ -438,10 +439,53 @@ class state {
     for (std::size_t k = 0; k < D; ++k) lo[k] = std::max(c[k] - r, box_lo_[k]), hi[k] = std::min(c[k] + r, box_hi_[k]);
   }
 
+  /// Whether point y in the diametral ball of a subsegment of PLC edge e asks for its split. In 2D
+  /// always. In 3D not where e is smooth (two facets folding by less than 15 degrees) between two
+  /// vertices inside a smooth surface, and y is a PLC vertex of a facet through e that is convex
+  /// at e, or a point on an edge of that facet that meets e at 60 degrees or more (or not at all):
+  /// every point of a facet convex at e lies on one side of e's line, so the subsegment is an
+  /// edge of the facet's Delaunay triangulation (its wrap) whatever such points encroach, and the
+  /// 3D Delaunay property comes from the subfacets through it, whose balls are checked against
+  /// every point. Points inside the facet, free points, and points on edges at smaller angles
+  /// (the shells keep those from descending) count as before. Why: docs/design-decisions.md,
+  /// "Subsegments of a smooth surface are not split for their own facets' corners".
+  bool counts_against(std::uint32_t e, vertex_id y) const {
+    if constexpr (D == 2) {
+      return true;
+    } else {
+      const auto& E = edges_[e];
+      if (e >= smooth_edge_.size() || !smooth_edge_[e] || E.u >= flat_vertex_.size() || !flat_vertex_[E.u] ||
+          E.v >= flat_vertex_.size() || !flat_vertex_[E.v])
+        return true;
+      const home h = out_.homes[y];
+      if (h.kind != home::vertex && h.kind != home::edge) return true;
+      for (auto f : E.facets) {
+        if (std::binary_search(facet_reflex_[f].begin(), facet_reflex_[f].end(), e)) continue;
+        if (h.kind == home::vertex ? std::binary_search(facet_corners_[f].begin(), facet_corners_[f].end(), y)
+                                   : std::binary_search(facet_edges_[f].begin(), facet_edges_[f].end(), h.id) && wide(e, h.id))
+          return false;
+      }
+      return true;
+    }
+  }
+
+  /// 3D: PLC edges e and e2 share no vertex, or meet at one at 60 degrees or more (e2 != e).
+  bool wide(std::uint32_t e, std::uint32_t e2) const {
+    const auto& A = edges_[e];
+    const auto& B = edges_[e2];
+    if (e == e2) return false;
+    const vertex_id s = A.u == B.u || A.u == B.v ? A.u : A.v == B.u || A.v == B.v ? A.v : no_vertex;
+    if (s == no_vertex) return true;
+    const auto& p = out_.points;
+    const point<D> d1 = p[A.u == s ? A.v : A.u] - p[s], d2 = p[B.u == s ? B.v : B.u] - p[s];
+    return dot(d1, d2) <= 0.5 * std::sqrt(dot(d1, d1) * dot(d2, d2));
+  }
+
   /// Vertices on the diametral sphere of (a,b) or strictly inside: returns an encroacher, the one
   /// of smallest id in the nearest ring of grid cells about the ball's centre that holds one
-  /// (deterministic; a large ball is not scanned whole), or no_vertex.
-  vertex_id segment_encroacher(vertex_id a, vertex_id b, std::vector<vertex_id>& ties) const {
+  /// (deterministic; a large ball is not scanned whole), or no_vertex. Given the subsegment's PLC
+  /// edge e, only vertices that count against it (counts_against).
+  vertex_id segment_encroacher(vertex_id a, vertex_id b, std::vector<vertex_id>& ties, std::uint32_t e = no_edge) const {
     const auto& p = out_.points;
     const auto [c, r] = detail::diametral_bound(p[a], p[b]);
     point<D> lo, hi;
@@ -452,6 +496,7 @@ class state {
     grid_.for_box(lo, hi).visit_rings(c, lo, hi, [&](vertex_id y) {
       if (y == a || y == b || (strict != no_vertex && y > strict)) return;
       if (squared_distance(c, p[y]) > r2) return;  // double prefilter, padded
+      if (e != no_edge && !counts_against(e, y)) return;
       const int s = geometry::in_diametral(p[a], p[b], p[y]);
       if (s > 0) strict = y;
       else if (s == 0) ties.push_back(y);
@@ -732,7 +777,7 @@ class state {
           if (a < upto && b < upto) {
             if (!far) encroached[e] = near_subsegment(recent, a, b);
           } else {
-            encroached[e] = segment_encroacher(a, b, scratch) != no_vertex;
+            encroached[e] = segment_encroacher(a, b, scratch, e) != no_vertex;
           }
         }
       }, [&](std::uint32_t e) { return static_cast<double>(edges_[e].chain.size()); });
@@ -762,7 +807,7 @@ class state {
         if (!encroached[e] && (added.empty || !touched(e))) continue;
         for (std::size_t i = 0; i + 1 < edges_[e].chain.size();) {
           const vertex_id a = edges_[e].chain[i], b = edges_[e].chain[i + 1];
-          const vertex_id y = protected_subsegment(e, i) || clean_since(a, b) ? no_vertex : segment_encroacher(a, b, ties);
+          const vertex_id y = protected_subsegment(e, i) || clean_since(a, b) ? no_vertex : segment_encroacher(a, b, ties, e);
           if (y == no_vertex) {
             ++i;
             continue;
@@ -877,6 +922,13 @@ class state {
   rules::rule_set own_rules_;
   const rules::rule_set* rules_;
   std::vector<plc_edge> edges_;
+  // 3D, for counts_against: per facet, its constraint edges, those at which it is not convex
+  // (a PLC vertex of it strictly on each side of the edge's line) and its PLC vertices, sorted;
+  // per edge, whether it is smooth (two facets folding by less than 15 degrees); per PLC vertex,
+  // whether it lies inside a smooth surface (every edge through it smooth)
+  std::vector<std::vector<std::uint32_t>> facet_edges_, facet_reflex_;
+  std::vector<std::vector<vertex_id>> facet_corners_;
+  std::vector<char> smooth_edge_, flat_vertex_;
   std::map<std::pair<vertex_id, vertex_id>, std::uint32_t> edge_index_;
   std::map<vertex_id, std::vector<std::uint32_t>> vertex_edges_;
   std::size_t segments_clean_upto_ = 0;  // points when conform_segments last returned
@@ -966,6 +1018,7 @@ class state3 : public state<3> {
     }
     facets_.resize(regions.size());
     for (std::uint32_t f = 0; f < regions.size(); ++f) setup_facet(f, regions[f]);
+    find_convexity();
     // each edge's way into its first facet (on_edge)
     for (std::uint32_t f = 0; f < regions.size(); ++f)
       for (auto [e, fw] : facets_[f].sides) {
@@ -1119,12 +1172,14 @@ class state3 : public state<3> {
         smooth[e] = ab < -flat_cos * l;
       }
     }
+    smooth_edge_ = smooth;
     // a vertex inside a smooth surface (every edge through it smooth): its small angles are those
     // of a triangulated surface, the corners of its facets, which the shells about it handle as
     // in 2D; it gets no protecting ball for them, only a guard radius for the refinement (guard_)
     std::vector<char> flat(out_.plc_points, 0);
     for (const auto& [v, es] : vertex_edges_)
       if (v < flat.size()) flat[v] = !es.empty() && std::all_of(es.begin(), es.end(), [&](std::uint32_t e) { return smooth[e] != 0; });
+    flat_vertex_ = flat;
     ball_wanted_.assign(acute_.begin(), acute_.end());
     for (std::size_t v = 0; v < flat.size(); ++v)
       if (flat[v]) ball_wanted_[v] = 0;
@@ -1172,6 +1227,32 @@ class state3 : public state<3> {
     const point3 dp = d - dot(d, S.unit) * S.unit;
     if (dot(dp, dp) == 0) return true;  // along the normal: not below 62 degrees by the test above anyway
     return angle(dp) < angle(in);
+  }
+
+  /// facet_edges_, facet_corners_ and facet_reflex_ (counts_against). A facet of more than 256 PLC
+  /// vertices counts as not convex at any edge (the test is quadratic; merged planar regions).
+  void find_convexity() {
+    facet_edges_.assign(facets_.size(), {});
+    facet_corners_.assign(facets_.size(), {});
+    facet_reflex_.assign(facets_.size(), {});
+    for (std::uint32_t f = 0; f < facets_.size(); ++f) {
+      const auto& S = facets_[f];
+      for (auto [e, fw] : S.sides) facet_edges_[f].push_back(e);
+      std::sort(facet_edges_[f].begin(), facet_edges_[f].end());
+      facet_edges_[f].erase(std::unique(facet_edges_[f].begin(), facet_edges_[f].end()), facet_edges_[f].end());
+      facet_corners_[f].assign(S.corners.begin(), S.corners.end());
+      for (std::uint32_t e : facet_edges_[f]) {
+        // which side of the plane through e along the facet's normal each PLC vertex lies on (exact)
+        const point3 &a = out_.points[edges_[e].u], &b = out_.points[edges_[e].v];
+        const point3 up = a + S.unit;
+        bool pos = S.corners.size() > 256, neg = pos;
+        for (auto it = S.corners.begin(); it != S.corners.end() && !(pos && neg); ++it) {
+          const int o = geometry::orient3d(a, b, up, out_.points[*it]);
+          pos = pos || o > 0, neg = neg || o < 0;
+        }
+        if (pos && neg) facet_reflex_[f].push_back(e);
+      }
+    }
   }
 
   /// Facet f from its region: constraint edges (registered as PLC edges) and embedded points.

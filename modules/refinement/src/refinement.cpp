@@ -1939,6 +1939,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
             }
           }
         }
+        const auto walls_of = nb;  // for a second try (below)
         insertion::cavity cav(std::span<const point<D>>(p), cs, std::move(nb));
         // the points: those on the region's new boundary faces first (kind 0), then free ones
         // (kind 1), each with the cells whose balls held it (walks start there), by id
@@ -2011,6 +2012,7 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
             std::swap(pending, later);
           }
         };
+        const auto every_point = pending;
         passes(false);
         // points on new boundary faces that wait for each other: a split point of an input edge
         // whose conflict region meets, from behind, a face of a third facet made through an
@@ -2020,8 +2022,24 @@ bool remesh_cavities(const conformer::boundary<D>& b0, const conformer::boundary
         // and the cavity then must be Delaunay across every face between its cells
         passes(true);
         if (cut && !cav.locally_delaunay()) {
-          out.ok = false;
-          return;
+          // once more from the start, the points on new boundary faces in the opposite order (the
+          // free ones after them as before): which of the waiting points goes in with its region
+          // cut back depends on the order, and another choice can leave the cavity Delaunay
+          // (gmsh_piece and gmsh_revolve at --quality 1.414 each had one cavity left to the front
+          // mesher after the conformer's smooth-surface rule; docs/benchmarks.md, sixty-ninth part)
+          cav = insertion::cavity(std::span<const point<D>>(p), cs, walls_of);
+          pending.clear();
+          for (auto it = every_point.rbegin(); it != every_point.rend(); ++it)
+            if (!(todo[it->first].first >> 32)) pending.push_back(*it);
+          for (const auto& r : every_point)
+            if (todo[r.first].first >> 32) pending.push_back(r);
+          cut = false;
+          passes(false);
+          passes(true);
+          if (cut && !cav.locally_delaunay()) {
+            out.ok = false;
+            return;
+          }
         }
         // a free point left fails the cavity; a point on a new boundary face whose balls this
         // cavity holds may lie on another's side (the region's walls tell)
