@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <stdexcept>
@@ -101,6 +103,29 @@ BOOST_AUTO_TEST_CASE(for_each_threads_are_reused_safely) {
   std::atomic<int> after{0};
   for_each(execution::par(2), inner, [&](int) { ++after; });
   BOOST_TEST(after.load() == 50);
+}
+
+// beyond 64 elements per thread the cheap ones are handed out in runs: whatever the cost estimates
+// (zero, a few huge, not a number), every element is still visited exactly once, and a throw
+// inside a run still reaches the caller
+BOOST_AUTO_TEST_CASE(for_each_runs_visit_every_element_once_whatever_the_costs) {
+  std::vector<int> ids(5000);
+  std::iota(ids.begin(), ids.end(), 0);
+  const std::vector<std::function<double(int)>> estimates{
+      [](int) { return 0.0; },
+      [](int i) { return i % 997 == 0 ? 1e9 : 1.0; },
+      [](int i) { return static_cast<double>(i % 7); },
+      [](int i) { return i == 3 ? std::numeric_limits<double>::quiet_NaN() : 2.0; }};
+  for (unsigned t : {2u, 3u})
+    for (const auto& cost : estimates) {
+      std::vector<std::atomic<int>> hits(ids.size());
+      for_each(execution::par(t), ids, [&](int i) { ++hits[static_cast<std::size_t>(i)]; }, cost);
+      for (auto& h : hits) BOOST_TEST_REQUIRE(h.load() == 1);
+    }
+  BOOST_CHECK_THROW(for_each(execution::par(2), ids, [](int i) {
+                      if (i == 4321) throw std::runtime_error("boom");
+                    }, [](int) { return 0.0; }),
+                    std::runtime_error);
 }
 
 BOOST_AUTO_TEST_CASE(zero_threads_means_every_hardware_thread_everywhere) {

@@ -755,13 +755,12 @@ class state {
       if (upto > 0) {
         for (std::uint32_t e : ball_big_) want[e] = 2;
         for (std::size_t v = upto; v < pass_start; ++v) edges_near(p[v], [&](std::uint32_t e) { want[e] = 2; });
-        for (std::uint32_t e = 0; e < edges_.size(); ++e)
-          if (!want[e])
-            for (vertex_id x : edges_[e].chain)
-              if (x >= upto) {
-                want[e] = 1;
-                break;
-              }
+        // the edges whose chain holds a point inserted since: a chain's points between its ends
+        // are those whose home is that edge, and its ends are PLC vertices, older than any `upto`
+        // (the new points' homes are read, not every chain: a pass over the Gmsh torus's 48,000
+        // chains was 8% of its refinement's tail; docs/benchmarks.md, seventieth part)
+        for (std::size_t v = upto; v < pass_start; ++v)
+          if (const home& h = out_.homes[v]; h.kind == home::edge && !want[h.id]) want[h.id] = 1;
       }
       std::vector<std::uint32_t> todo;
       for (std::uint32_t e = 0; e < edges_.size(); ++e)
@@ -2612,15 +2611,22 @@ class state3 : public state<3> {
   /// rounds() splits those still there in its first round.
   using wanted_faces = std::map<std::uint32_t, std::vector<std::array<vertex_id, 3>>>;
   wanted_faces wanted_of(const boundary<3>& prev, const std::vector<std::size_t>& split) const {
-    std::map<std::uint32_t, std::uint32_t> facet_of;  // input facet naming a facet -> facet
-    for (std::uint32_t f = 0; f < facets_.size(); ++f) facet_of[facets_[f].source] = f;
+    // (input facet naming a facet, facet), sorted: kept between calls (a map of every facet built
+    // for each call was 2.6 ms of each refinement round on the Gmsh torus's 38,974 facets)
+    if (facet_of_.size() != facets_.size()) {
+      facet_of_.clear();
+      for (std::uint32_t f = 0; f < facets_.size(); ++f) facet_of_.push_back({facets_[f].source, f});
+      std::sort(facet_of_.begin(), facet_of_.end());
+    }
     wanted_faces wanted;
     for (auto k : split) {
-      auto it = facet_of.find(prev.face_source.at(k));
-      if (it == facet_of.end()) continue;
+      // the last facet of that name, as a map assigned in facet order would keep
+      const std::uint32_t src = prev.face_source.at(k);
+      auto it = std::upper_bound(facet_of_.begin(), facet_of_.end(), std::pair{src, ~std::uint32_t{0}});
+      if (it == facet_of_.begin() || std::prev(it)->first != src) continue;
       auto T = prev.faces[k];
       std::sort(T.begin(), T.end());
-      wanted[it->second].push_back(T);
+      wanted[std::prev(it)->second].push_back(T);
     }
     return wanted;
   }
@@ -2763,6 +2769,7 @@ class state3 : public state<3> {
   front::facet_lines lines_;
   std::size_t checked_upto_ = 0;  // points that existed at the last check of every facet
   std::vector<std::size_t> seen_;  // per facet: vertex count when last triangulated (rounds())
+  mutable std::vector<std::pair<std::uint32_t, std::uint32_t>> facet_of_;  // wanted_of()
 };
 
 }  // namespace

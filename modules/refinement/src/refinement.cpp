@@ -605,7 +605,11 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
       });
       std::vector<std::pair<std::uint64_t, vertex_id>> around;
       for (const auto& a : around_in) around.insert(around.end(), a.begin(), a.end());
-      gsse::stable_sort(execution::par(threads), around.begin(), around.end());
+      // by subsegment alone, each one's entries in face order (what is asked of them below does
+      // not depend on their order): a linear sort, where sorting the pairs whole was 10 of the
+      // 12 ms this step took each round on the Gmsh torus (136,000 entries; docs/benchmarks.md,
+      // seventieth part)
+      radix_sort(around);
       // the groups in pieces of about `piece` entries (cut between groups), in parallel; the
       // pieces' sharp subsegments in piece order, as one pass in order lists them (a serial pass,
       // 0.47 s of scad_example009's plans; docs/benchmarks.md, sixty-eighth part)

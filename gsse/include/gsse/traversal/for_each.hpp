@@ -39,8 +39,8 @@ void for_each(execution::sequenced_policy, R&& range, F&& f) {
 
 /// Parallel for_each over a random-access range (e.g. segments(d)). `cost(s)` estimates the work
 /// of an element (default 1): elements are handed out most expensive first, each to the next free
-/// thread, so one long element overlaps many short ones. The first exception thrown by any worker
-/// is rethrown after all workers have joined.
+/// thread, so one long element overlaps many short ones (beyond 64 per thread, the cheap ones in
+/// short runs). The first exception thrown by any worker is rethrown after all workers have joined.
 template <std::ranges::random_access_range R, class F, class Cost>
 void for_each(execution::parallel_policy p, R&& range, F&& f, Cost&& cost) {
   const std::size_t n = std::ranges::size(range);
@@ -51,21 +51,45 @@ void for_each(execution::parallel_policy p, R&& range, F&& f, Cost&& cost) {
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return costs[a] > costs[b]; });
+  // many elements: handed out in runs of that order, not one at a time. A claim is an atomic
+  // increment on a line both threads write, about what a quiet element's work costs (the
+  // conformer's check of 32,000 one-triangle facet pieces took 6 ms a round on the Gmsh torus,
+  // docs/benchmarks.md, seventieth part). A run holds at most 1/(32 x threads) of the estimated
+  // total and of the elements; an element above that goes alone. Which thread runs an element
+  // never changes a result (above), so neither does this
+  std::vector<std::size_t> runs;  // run k: order[runs[k], runs[k + 1])
+  if (n > 64 * static_cast<std::size_t>(threads)) {
+    double total = 0;
+    for (double x : costs) total += x;
+    const double most = total / (32.0 * threads);
+    const std::size_t longest = n / (32 * static_cast<std::size_t>(threads));
+    for (std::size_t i = 0; i < n;) {
+      runs.push_back(i);
+      double sum = costs[order[i]];
+      const std::size_t first = i++;
+      while (i < n && i - first < longest && sum + costs[order[i]] <= most) sum += costs[order[i++]];
+    }
+  } else {
+    runs.resize(n);
+    std::iota(runs.begin(), runs.end(), std::size_t{0});
+  }
+  runs.push_back(n);
   struct context {
     R& range;
     F& f;
     const std::vector<std::size_t>& order;
+    const std::vector<std::size_t>& runs;
     detail::worker_pool::job job;
     std::exception_ptr error;
     std::mutex m;
-  } c{range, f, order, {}, {}, {}};
-  c.job.n = n;
-  c.job.helpers = static_cast<unsigned>(std::min<std::size_t>(threads, n)) - 1;
+  } c{range, f, order, runs, {}, {}, {}};
+  c.job.n = runs.size() - 1;
+  c.job.helpers = static_cast<unsigned>(std::min<std::size_t>(threads, c.job.n)) - 1;
   c.job.context = &c;
   c.job.body = [](void* self, std::size_t k) {
     auto& x = *static_cast<context*>(self);
     try {
-      std::invoke(x.f, std::ranges::begin(x.range)[x.order[k]]);
+      for (std::size_t i = x.runs[k]; i < x.runs[k + 1]; ++i) std::invoke(x.f, std::ranges::begin(x.range)[x.order[i]]);
     } catch (...) {
       std::lock_guard lock(x.m);
       if (!x.error) x.error = std::current_exception();
