@@ -2611,8 +2611,10 @@ class state3 : public state<3> {
   /// rounds() splits those still there in its first round.
   using wanted_faces = std::map<std::uint32_t, std::vector<std::array<vertex_id, 3>>>;
   wanted_faces wanted_of(const boundary<3>& prev, const std::vector<std::size_t>& split) const {
-    // (input facet naming a facet, facet), sorted: kept between calls (a map of every facet built
-    // for each call was 2.6 ms of each refinement round on the Gmsh torus's 38,974 facets)
+    // (input facet naming a facet, facet), sorted: built on the first call and kept, as the
+    // facets are fixed once the constructor has set them up (a map of every facet built for each
+    // call was 2.6 ms of each refinement round on the Gmsh torus's 38,974 facets); not in the
+    // constructor, so a run without refinement rounds does not pay for it
     if (facet_of_.size() != facets_.size()) {
       facet_of_.clear();
       for (std::uint32_t f = 0; f < facets_.size(); ++f) facet_of_.push_back({facets_[f].source, f});
