@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Copies ../shared's meshcheck source to OUT and applies four fixes for floating-point artefacts
-it shows on slanted facets (see docs/benchmarks.md, "meshcheck on slanted facets"):
+"""Copies ../shared's meshcheck source to OUT and applies five fixes for floating-point artefacts
+it shows on slanted facets and at scales below its tolerance (see docs/benchmarks.md, "meshcheck
+on slanted facets", and the seventy-first part):
 
 1. A face whose share of a coplanar facet is a rounding sliver (within 1e-9 of the face plus fix
    3's slack) does not make the face span that facet: the sliver still counts towards the facet's
@@ -22,6 +23,11 @@ it shows on slanted facets (see docs/benchmarks.md, "meshcheck on slanted facets
    the edge (coordinates 280), lies in neither facet's projected region, is classed as on no facet,
    and every face at it is reported as "on no input facet" (occ_pump_nut at --quality 1.414). The
    face's area shares still decide whether it leaves the facet.
+5. A face lies in an exactly planar facet's plane only if its vertices are within 1e-5 of its
+   width (its least altitude) of the plane (or within 8192 ulps of its largest coordinate), besides
+   each within the tolerance. OpenSCAD's example010 (a model 70 across, tolerance 7e-8) is conformed with cells of
+   6e-8 next to a facet of area 3.5e-6: their faces through a point 5.9e-8 off the facet counted as
+   on it, and the facet as covered more than once. The library verifier applies the same test.
 
 Every fix asserts the text it replaces, so a changed meshcheck stops this script instead of being
 patched blindly. Files already in OUT with the same content are not rewritten (no rebuild).
@@ -143,6 +149,35 @@ static bool nearFacetBoundary(const Plc& plc, const Facet& f, const Vec& p) {
   return coplanar ? kExact : kNear;""",
      """  if (!inFacetRegion(f, v)) return nearFacetBoundary(plc, f, v) ? kNear : kOff;  // gsse fix 4
   return coplanar ? kExact : kNear;"""),
+]
+fixes += [
+    ("""Placement placeFace(""",
+     """// gsse fix 5: a face lies in a facet's plane only if its vertices are within 1e-5 of its width (3D:
+// least altitude) of that plane (or within rounding of it: 8192 ulps of the largest coordinate),
+// besides each within the tolerance: a face far smaller or thinner than the tolerance (a cell of
+// 6e-8 next to a facet of 1e-4 in a model 70 across) otherwise counts as on the facet, and so does
+// a face of a facet meeting it at a small angle near their common edge. Facets not exactly planar keep the
+// tolerance alone. The library verifier applies the same test (modules/verify, face_in_plane)
+static bool faceInPlane(const Plc& plc, const Facet& f, const Mesh& m, const uint32_t* v) {
+  if (!f.exactPlanar) return true;
+  const Vec& a = plc.pts[f.plane[0]];
+  double longest = 0, far = 0, mag = 0;
+  for (int t = 0; t < m.dim; ++t) {
+    longest = std::max(longest, norm(sub(m.pts[v[t]], m.pts[v[(t + 1) % m.dim]])));
+    far = std::max(far, std::fabs(dot(sub(m.pts[v[t]], a), f.unitNormal)));
+    for (int i = 0; i < 3; ++i) mag = std::max({mag, std::fabs(m.pts[v[t]][i]), std::fabs(a[i])});
+  }
+  double width = longest;  // 3D: the least altitude, twice the area over the longest edge
+  if (m.dim == 3) width = longest > 0 ? norm(cross(sub(m.pts[v[1]], m.pts[v[0]]), sub(m.pts[v[2]], m.pts[v[0]]))) / longest : 0;
+  return far <= std::max(1e-5 * width, 8192 * std::numeric_limits<double>::epsilon() * mag);
+}
+
+Placement placeFace("""),
+    ("""    if (all && (k == 2 || inFacetRegion(plc.facets[cand[c]], centroid)))""",
+     """    if (all && (exact || faceInPlane(plc, plc.facets[cand[c]], m, v)) &&  // gsse fix 5
+        (k == 2 || inFacetRegion(plc.facets[cand[c]], centroid)))"""),
+    ("""    if (!coplanar) continue;""",
+     """    if (!coplanar || (!exact && !faceInPlane(plc, f, m, v))) continue;  // gsse fix 5"""),
 ]
 for old, new in fixes:
     if text.count(old) != 1:

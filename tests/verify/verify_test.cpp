@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 
 #include "gsse/geometry/exact_ball.hpp"
 #include "gsse/io/poly.hpp"
@@ -358,6 +359,87 @@ BOOST_AUTO_TEST_CASE(slanted_facets_use_the_tolerance) {
       BOOST_TEST(r.ok(), all(r));
     }
   }
+}
+
+BOOST_AUTO_TEST_CASE(a_cell_far_below_the_tolerance_next_to_a_facet_is_not_flat_on_it) {
+  // What the conformer leaves at a small input angle (OpenSCAD's example010, a model 70 across:
+  // cells of 6e-8 next to a facet of 1e-4, below the tolerance, 1e-9 of the diagonal = 7e-8):
+  // here a small triangle (s1, s2, s3) on the hull face y = 0 of the left box and a point q 2e-9
+  // above it (the tolerance: 2.4e-9), the cell (s1, s2, s3, q) about 1e-4 across. Every vertex of
+  // its faces through q lies within the tolerance of the facet's plane, but those faces stand out
+  // of it by 2e-5 of their width: they are not on the facet, and the cell is not flat on it (they
+  // were counted, and the facet reported as covered more than once, by 5e-9 of its area)
+  const auto p = two_box_plc();
+  auto d = two_box_mesh(1.0);
+  auto& pts = d.mutable_points();
+  auto& cells = d.segments()[0].mutable_cells();
+  // the cell holding point x (closed), or none
+  auto holding = [&](const point3& x) {
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      const auto t = cells[c];
+      const int o = geometry::orient3d(pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]]);
+      bool in = true;
+      for (std::size_t i = 0; i < 4 && in; ++i) {
+        std::array<point3, 4> u{pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]]};
+        u[i] = x;
+        in = geometry::orient3d(u[0], u[1], u[2], u[3]) * o >= 0;
+      }
+      if (in) return c;
+    }
+    return cells.size();
+  };
+  // x put in the cell holding it: each corner replaced by x in turn, the cells with no volume
+  // left out (x on a face: 3 cells; inside: 4)
+  auto insert = [&](const point3& x) {
+    const std::size_t c = holding(x);
+    BOOST_TEST_REQUIRE(c < cells.size());
+    const auto t = cells[c];
+    const auto v = static_cast<vertex_id>(pts.size());
+    pts.push_back(x);
+    cells.erase(cells.begin() + static_cast<long>(c));
+    for (std::size_t i = 0; i < 4; ++i) {
+      auto u = t;
+      u[i] = v;
+      if (geometry::orient3d(pts[u[0]], pts[u[1]], pts[u[2]], pts[u[3]]) != 0) cells.push_back(u);
+    }
+    return v;
+  };
+  // the cell with vertices a and b and, if `third`, a vertex on y = 0 besides them (the hull
+  // face through them), and its other vertices
+  auto with = [&](vertex_id a, vertex_id b, std::optional<vertex_id> c) -> std::pair<vertex_id, vertex_id> {
+    for (const auto& t : cells) {
+      if (!std::count(t.begin(), t.end(), a) || !std::count(t.begin(), t.end(), b)) continue;
+      if (c && !std::count(t.begin(), t.end(), *c)) continue;
+      std::vector<vertex_id> rest;
+      for (auto v : t)
+        if (v != a && v != b && (!c || v != *c)) rest.push_back(v);
+      if (c) return {rest[0], rest[0]};
+      if (pts[rest[1]][1] == 0.0) std::swap(rest[0], rest[1]);
+      if (pts[rest[0]][1] == 0.0) return {rest[0], rest[1]};
+    }
+    BOOST_FAIL("no such cell");
+    return {0, 0};
+  };
+  const auto s1 = insert({0.3, 0.0, 0.2});  // on the face y = 0, inside a Kuhn triangle
+  const auto s2 = insert({0.3 + 1e-4, 0.0, 0.2});
+  // s3 inside the hull triangle (s1, s2, c), 1e-4 from the edge s1 s2 (on y = 0 exactly)
+  const vertex_id c = with(s1, s2, std::nullopt).first;
+  const point3 mid = 0.5 * (pts[s1] + pts[s2]);
+  const auto s3 = insert(mid + (1e-4 / distance(pts[c], mid)) * (pts[c] - mid));
+  // q on the way from the tiny triangle's centroid to the cell's fourth vertex e, at height y
+  const vertex_id e = with(s1, s2, s3).first;
+  const point3 centre = (1.0 / 3) * (pts[s1] + pts[s2] + pts[s3]);
+  auto above = [&](double y) { return centre + (y / pts[e][1]) * (pts[e] - centre); };
+  insert(above(2e-9));
+  BOOST_TEST_REQUIRE(pts.size() == 45u + 4u);
+  const verify::options o{.delaunay = false};
+  const auto r = verify::check(d, p, o);
+  BOOST_TEST(r.ok(), all(r));
+  // the same point 1e-12 above the facet, 1e-8 of the faces' width: those faces lie on the facet
+  // (within face_tilt, 1e-5 of their width) and the cell is flat on it
+  pts.back() = above(1e-12);
+  const auto flat = verify::check(d, p, o);
+  BOOST_TEST(counts(flat).overcovered == 1u, all(flat));
 }
 
 BOOST_AUTO_TEST_CASE(faces_across_coplanar_facets) {

@@ -201,6 +201,8 @@ placement place(const facet_set<D>& fs, const vertex_facets& vf, const std::vect
     if (!vf.any(x)) return placement::off;
   point<D> centre{};
   for (auto x : v) centre = centre + (1.0 / D) * p[x];
+  std::array<point<D>, D> corners;
+  for (std::size_t k = 0; k < D; ++k) corners[k] = p[v[k]];
   // one facet holding every vertex (and, in 3D, the centroid). `loose`: one that holds them only
   // with a vertex rounded off its region, just across its edge: used if the face does not split
   // into shares of coplanar facets (a face across the seam of two coplanar facets of one marker,
@@ -220,6 +222,7 @@ placement place(const facet_set<D>& fs, const vertex_facets& vf, const std::vect
       off = off || on == 2;
     }
     if (!all) continue;
+    if (!exact && !fs.face_in_plane(f, corners)) continue;
     if constexpr (D == 3)
       if (!fs.in_region(f, centre)) continue;
     (off ? loose : hits).push_back({f, size, exact});
@@ -234,8 +237,6 @@ placement place(const facet_set<D>& fs, const vertex_facets& vf, const std::vect
   point<D> lo = p[v[0]], hi = lo;
   for (auto x : v)
     for (std::size_t k = 0; k < D; ++k) lo[k] = std::min(lo[k], p[x][k]), hi[k] = std::max(hi[k], p[x][k]);
-  std::array<point<D>, D> corners;
-  for (std::size_t k = 0; k < D; ++k) corners[k] = p[v[k]];
   double covered = 0;
   fs.near(lo, hi, scratch, [&](std::uint32_t f) {
     bool exact = true;
@@ -245,6 +246,7 @@ placement place(const facet_set<D>& fs, const vertex_facets& vf, const std::vect
       if (on < 0) return;
       exact = exact && on == 1;
     }
+    if (!exact && !fs.face_in_plane(f, corners)) return;
     // every share counts towards its facet's coverage (a face across the seam of a thin facet
     // has 1e-10 of its area there, which is all of that facet's coverage near it)
     if (const double s = fs.share(f, corners); s > 0) {
