@@ -367,7 +367,7 @@ BOOST_AUTO_TEST_CASE(a_cell_far_below_the_tolerance_next_to_a_facet_is_not_flat_
   // here a small triangle (s1, s2, s3) on the hull face y = 0 of the left box and a point q 2e-9
   // above it (the tolerance: 2.4e-9), the cell (s1, s2, s3, q) about 1e-4 across. Every vertex of
   // its faces through q lies within the tolerance of the facet's plane, but those faces stand out
-  // of it by 2e-5 of their width: they are not on the facet, and the cell is not flat on it (they
+  // of it by about 6e-5 of their width: they are not on the facet, and the cell is not flat on it (they
   // were counted, and the facet reported as covered more than once, by 5e-9 of its area)
   const auto p = two_box_plc();
   auto d = two_box_mesh(1.0);
@@ -404,8 +404,8 @@ BOOST_AUTO_TEST_CASE(a_cell_far_below_the_tolerance_next_to_a_facet_is_not_flat_
     }
     return v;
   };
-  // the cell with vertices a and b and, if `third`, a vertex on y = 0 besides them (the hull
-  // face through them), and its other vertices
+  // the cell with vertices a and b and, given c, c too (its fourth vertex first); without c, the
+  // one whose third vertex lies on y = 0 (the hull face through a and b), that vertex first
   auto with = [&](vertex_id a, vertex_id b, std::optional<vertex_id> c) -> std::pair<vertex_id, vertex_id> {
     for (const auto& t : cells) {
       if (!std::count(t.begin(), t.end(), a) || !std::count(t.begin(), t.end(), b)) continue;
@@ -426,7 +426,7 @@ BOOST_AUTO_TEST_CASE(a_cell_far_below_the_tolerance_next_to_a_facet_is_not_flat_
   const vertex_id c = with(s1, s2, std::nullopt).first;
   const point3 mid = 0.5 * (pts[s1] + pts[s2]);
   const auto s3 = insert(mid + (1e-4 / distance(pts[c], mid)) * (pts[c] - mid));
-  // q on the way from the tiny triangle's centroid to the cell's fourth vertex e, at height y
+  // q on the way from the small triangle's centroid to the cell's fourth vertex e, at height y
   const vertex_id e = with(s1, s2, s3).first;
   const point3 centre = (1.0 / 3) * (pts[s1] + pts[s2] + pts[s3]);
   auto above = [&](double y) { return centre + (y / pts[e][1]) * (pts[e] - centre); };
@@ -435,8 +435,8 @@ BOOST_AUTO_TEST_CASE(a_cell_far_below_the_tolerance_next_to_a_facet_is_not_flat_
   const verify::options o{.delaunay = false};
   const auto r = verify::check(d, p, o);
   BOOST_TEST(r.ok(), all(r));
-  // the same point 1e-12 above the facet, 1e-8 of the faces' width: those faces lie on the facet
-  // (within face_tilt, 1e-5 of their width) and the cell is flat on it
+  // the same point 1e-12 above the facet, about 3e-8 of the faces' width: those faces lie on the
+  // facet (within face_tilt, 1e-5 of their width) and the cell is flat on it
   pts.back() = above(1e-12);
   const auto flat = verify::check(d, p, o);
   BOOST_TEST(counts(flat).overcovered == 1u, all(flat));
