@@ -25,9 +25,10 @@ on slanted facets", and the seventy-first part):
    face's area shares still decide whether it leaves the facet.
 5. A face lies in an exactly planar facet's plane only if its vertices are within 1e-5 of its
    width (its least altitude) of the plane (or within 8192 ulps of its largest coordinate), besides
-   each within the tolerance. OpenSCAD's example010 (a model 70 across, tolerance 7e-8) is conformed with cells of
-   6e-8 next to a facet of area 3.5e-6: their faces through a point 5.9e-8 off the facet counted as
-   on it, and the facet as covered more than once. The library verifier applies the same test.
+   each within the tolerance. OpenSCAD's example010 (a model 70 across, tolerance 7e-8) is
+   conformed with cells of 6e-8 next to a facet of area 3.5e-6: their faces through a point 5.9e-8
+   off the facet counted as on it, and the facet as covered more than once. The library verifier
+   applies the same test.
 
 Every fix asserts the text it replaces, so a changed meshcheck stops this script instead of being
 patched blindly. Files already in OUT with the same content are not rewritten (no rebuild).
@@ -155,9 +156,9 @@ fixes += [
      """// gsse fix 5: a face lies in a facet's plane only if its vertices are within 1e-5 of its width (3D:
 // least altitude) of that plane (or within rounding of it: 8192 ulps of the largest coordinate),
 // besides each within the tolerance: a face far smaller or thinner than the tolerance (a cell of
-// 6e-8 next to a facet of 1e-4 in a model 70 across) otherwise counts as on the facet, and so does
-// a face of a facet meeting it at a small angle near their common edge. Facets not exactly planar keep the
-// tolerance alone. The library verifier applies the same test (modules/verify, face_in_plane)
+// 6e-8 next to a facet of 1e-4 in a model 70 across) otherwise counts as on the facet. Facets not
+// exactly planar keep the tolerance alone. The library verifier applies the same test
+// (modules/verify, face_in_plane)
 static bool faceInPlane(const Plc& plc, const Facet& f, const Mesh& m, const uint32_t* v) {
   if (!f.exactPlanar) return true;
   const Vec& a = plc.pts[f.plane[0]];
@@ -168,7 +169,10 @@ static bool faceInPlane(const Plc& plc, const Facet& f, const Mesh& m, const uin
     for (int i = 0; i < 3; ++i) mag = std::max({mag, std::fabs(m.pts[v[t]][i]), std::fabs(a[i])});
   }
   double width = longest;  // 3D: the least altitude, twice the area over the longest edge
-  if (m.dim == 3) width = longest > 0 ? norm(cross(sub(m.pts[v[1]], m.pts[v[0]]), sub(m.pts[v[2]], m.pts[v[0]]))) / longest : 0;
+  if (m.dim == 3 && longest > 0)
+    width = norm(cross(sub(m.pts[v[1]], m.pts[v[0]]), sub(m.pts[v[2]], m.pts[v[0]]))) / longest;
+  else if (m.dim == 3)
+    width = 0;
   return far <= std::max(1e-5 * width, 8192 * std::numeric_limits<double>::epsilon() * mag);
 }
 
