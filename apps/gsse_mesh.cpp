@@ -41,7 +41,7 @@ void usage(std::FILE* to) {
   std::fputs(
       "usage: gsse-mesh INPUT [-o OUTPUT] [--size H] [--cloud POINTS.node] [--threads N] [--verify]\n"
       "                 [--quiet] [--stats FILE.json] [--max-steiner N] [--fill lattice|rules]\n"
-      "                 [--rules FILE.rules] [--no-merge] [--plc-out FILE.poly] [--msh 4.1|2.2] [--verify-tol R]\n"
+      "                 [--rules FILE.rules] [--no-merge] [--gabriel] [--plc-out FILE.poly] [--msh 4.1|2.2] [--verify-tol R]\n"
       "                 [--grade G] [--no-feature-size] [--quality [B]] [--sliver-angle A] [--cavity-fill F]\n"
       "                 [--acute-guard F] [--quality-rounds N] [--size-fit] [--no-size-rounds]\n"
       "       gsse-mesh INPUT --check MESH [--threads N] [--quiet] [--verify-tol R]\n"
@@ -83,6 +83,9 @@ void usage(std::FILE* to) {
       "           its front rules the mesher's (front rules imply --fill rules)\n"
       "  --no-merge keep coplanar facets of one marker apart (by default they are merged across\n"
       "           edges no other facet uses, as TetGen does without -M)\n"
+      "  --gabriel 3D: keep every boundary and interface face's equatorial ball empty (the faces\n"
+      "           Gabriel; more points). By default a mesh without --quality or size rounds keeps\n"
+      "           faces whose ball holds points when they are Delaunay faces all the same\n"
       "  --size-fit measure every edge against the size at its midpoint (the size field, or --size)\n"
       "           and report how many lie within [0.5, 1.5] of it, below and above, in the summary\n"
       "           and --stats (quality.size_fit); a pass over every edge, seconds at 5e5 points\n"
@@ -117,6 +120,7 @@ struct args {
   bool verify = false, verify_tol_given = false, quiet = false, no_merge = false, msh22 = false;
   bool size_fit = false;  // --size-fit
   bool size_rounds = true;  // not --no-size-rounds
+  bool gabriel = false;     // --gabriel
   gsse::refinement::cavity_fill cavity_fill = gsse::refinement::cavity_fill::insertion;  // --cavity-fill
   std::size_t max_steiner = gsse::conformer::options{}.max_steiner;
 };
@@ -226,6 +230,7 @@ int run(const gsse::plc<D>& p, const args& a) {
   o.verify = a.verify;
   o.size_fit = a.size_fit;
   o.size_rounds = a.size_rounds;
+  o.gabriel = a.gabriel;
   o.quality = a.quality;
   o.quality_bound = a.quality_bound;
   o.sliver_angle = a.sliver_angle;
@@ -404,6 +409,7 @@ int run(const gsse::plc<D>& p, const args& a) {
     for (std::size_t k = 0; k < q.angle_histogram.size(); ++k) js << (k ? ", " : "") << q.angle_histogram[k];
     js << "]}, \"edges\": {\"shortest\": " << q.shortest_edge << ", \"shortest_input\": " << shortest_in
        << "}, \"uniform_size\": " << (r.uniform_size ? "true" : "false")
+       << ", \"boundary_faces\": \"" << (D == 2 ? "gabriel" : r.delaunay_faces ? "delaunay" : "gabriel") << "\""
        << ", \"min_size\": " << r.min_size;
     if (r.size_measured) {
       const auto& f = r.size_fit;
@@ -571,6 +577,8 @@ int main(int argc, char** argv) {
         a.verify = true;
       } else if (s == "--no-merge") {
         a.no_merge = true;
+      } else if (s == "--gabriel") {
+        a.gabriel = true;
       } else if (s == "--quiet") {
         a.quiet = true;
       } else if (!s.empty() && s[0] == '-') {

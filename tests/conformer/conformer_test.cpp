@@ -3,6 +3,7 @@
 
 #include <iostream>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -169,6 +170,54 @@ BOOST_AUTO_TEST_CASE(cloud_points_near_a_facet) {
   for (int i = 0; i < 100; ++i) near.push_back({u(rng), u(rng), 0.5 - 1e-7});  // just under the top
   for (int i = 0; i < 20; ++i) near.push_back({u(rng), u(rng), 0.0});          // exactly on the interface
   conform_and_check(p, near, 0.0, "cloud near facet");
+}
+
+/// Conforms p with and without options::delaunay_faces. With it, every subfacet must still be a
+/// facet of CGAL's Delaunay triangulation of all the points (the independent oracle), the boundary
+/// must label, and it must take no more Steiner points. Returns the two Steiner counts and the
+/// number of subfacets (with it) whose equatorial ball holds a point: kept all the same.
+template <std::size_t D>
+std::array<std::size_t, 3> conform_delaunay_faces(const plc<D>& p, const std::vector<point<D>>& volume, const std::string& what) {
+  const auto g = cf::conform(p, volume, cf::options{});
+  cf::options o;
+  o.delaunay_faces = true;
+  const auto b = cf::conform(p, volume, o);
+  const auto oracle = test::encroachment_oracle(b);
+  BOOST_TEST(oracle.not_delaunay == 0u, what << ": " << oracle.not_delaunay << " subfacets are not faces of CGAL's Delaunay triangulation");
+  BOOST_CHECK_NO_THROW(cf::label(b, p));
+  BOOST_TEST(b.steiner <= g.steiner, what << ": " << b.steiner << " Steiner points against " << g.steiner);
+  BOOST_TEST_MESSAGE("delaunay faces " << what << ": " << b.steiner << " Steiner points (Gabriel: " << g.steiner << "), "
+                                       << oracle.strictly_encroached.size() << " subfacets encroached and kept");
+  return {g.steiner, b.steiner, oracle.strictly_encroached.size()};
+}
+
+BOOST_AUTO_TEST_CASE(delaunay_faces_keep_encroached_subfacets_that_are_delaunay) {
+  // Points inside the upper box of two, 0.1 and more from its walls: they lie in the equatorial
+  // balls of the top's and the interface's subfacets, all on one side, and the spheres through
+  // those subfacets that bulge to the other side are empty. options::delaunay_faces keeps such
+  // subfacets; an empty equatorial ball (Gabriel) needs many more points
+  const auto p = stacked(0.5);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.1, 0.9), z(0.1, 0.4);
+  std::vector<point3> inside;
+  for (int i = 0; i < 200; ++i) inside.push_back({u(rng), u(rng), z(rng)});
+  const auto [gabriel, delaunay, kept] = conform_delaunay_faces(p, inside, "stacked + points");
+  BOOST_TEST(delaunay < gabriel);
+  BOOST_TEST(kept > 0u, "some subfacet is encroached and kept");
+  // encroached() is the Gabriel post-check still: it reports the kept subfacets
+  cf::options o;
+  o.delaunay_faces = true;
+  BOOST_TEST(!cf::encroached(cf::conform(p, inside, o)).empty());
+  // the rest: no more points, every subfacet Delaunay
+  for (const char* name : {"mosfet", "stack"})
+    std::visit(
+        [&](const auto& q) {
+          if constexpr (std::remove_cvref_t<decltype(q)>::dimension == 3) conform_delaunay_faces(q, {}, name);
+        },
+        io::read_plc(std::string(GSSE_SOURCE_DIR) + "/examples/" + name + ".poly"));
+  const double a = 5 * std::numbers::pi / 180;
+  conform_delaunay_faces(prism({{0, 0}, {1, 0}, {std::cos(a), std::sin(a)}}, 0.5, "wedge5"), {}, "dihedral 5");
+  conform_delaunay_faces(stacked(1e-3), {}, "thin layer");
 }
 
 BOOST_AUTO_TEST_CASE(post_check_reports_encroachment) {

@@ -985,6 +985,11 @@ struct facet_state {
   // triangles that were clean
   bool checked = false;
   std::vector<char> was_clean;
+  // per triangle at the last check (options::delaunay_faces): its equatorial ball held points but
+  // it was a Delaunay face all the same (state3::delaunay_face); it is checked again only if a
+  // point inserted since lies in `held`
+  std::vector<char> relaxed;
+  std::vector<std::pair<point3, double>> held;  // per relaxed triangle: the ball a point must enter to break it
   std::vector<char> fresh;  // after a local rewrap since the last check: per triangle, new since
   bool flat_local = false;  // fresh also marks the triangles new since the last flat_pairs
   // per piece of 512 subfacets at the last check: the box of their balls, and whether none was
@@ -1408,8 +1413,9 @@ class state3 : public state<3> {
       for (std::size_t t = 0; t < std::min(previous.size(), S.triangles.size()); ++t)
         S.fresh[t] = S.triangles[t] != previous[t] || (t < fresh_before.size() && fresh_before[t]);
       S.was_clean.resize(S.triangles.size(), 0);
+      S.relaxed.resize(S.triangles.size(), 0);
       for (std::size_t t = 0; t < S.triangles.size(); ++t)
-        if (S.fresh[t]) S.was_clean[t] = 0;
+        if (S.fresh[t]) S.was_clean[t] = 0, S.relaxed[t] = 0;
     } else {
       if (S.checked) {
         std::vector<key_set<3>::key> keys;
@@ -1422,6 +1428,7 @@ class state3 : public state<3> {
         S.clean = key_set<3>(keys);
       }
       S.checked = false;
+      S.relaxed.clear();
     }
     // the per-place caches: a place whose triangle changed (or is new) is unknown; the triangle
     // cells are filled again only if places moved (a shorter list) or many changed
@@ -1491,6 +1498,68 @@ class state3 : public state<3> {
     if (ties.empty()) return no_vertex;
     std::sort(ties.begin(), ties.end());
     return detail::triangle_in_cospherical_dt(p, a, b, c, ties) ? no_vertex : ties.front();
+  }
+
+  /// options::delaunay_faces: whether subfacet abc, whose closed equatorial ball (bound cc, r)
+  /// holds points, is a face of the perturbed Delaunay tetrahedralization of all points all the
+  /// same. The points in the ball must lie strictly on one side of its plane (points on both
+  /// sides, or in the plane, and it is not); x, the perturbed gift-wrap apex among them, gives the
+  /// tetrahedron abcx, and abc is a face iff abcx's circumsphere is perturbed-empty of every point
+  /// (a point on x's side outside the equatorial ball lies outside it: the sphere bulges to the
+  /// other side). A sphere over 64 r (a double estimate) answers no without a scan, as does a
+  /// degenerate triangle. On yes, `held` receives a ball holding the equatorial ball and the
+  /// sphere: only a point inserted there can make abc a non-face (one on x's side must lie in
+  /// the sphere through abc and the apex on the other side, whose cap on x's side lies in the
+  /// equatorial ball).
+  bool delaunay_face(vertex_id a, vertex_id b, vertex_id c, const point3& cc, double r,
+                     std::pair<point3, double>& held) const {
+    const auto& p = out_.points;
+    if (geometry::collinear(p[a], p[b], p[c])) return false;
+    point3 lo, hi;
+    ball_box(cc, r, lo, hi);
+    std::vector<vertex_id> pos, neg;
+    bool flat = false;
+    const double r2 = r * r;
+    grid_.for_box(lo, hi).visit(lo, hi, [&](vertex_id y) {
+      if (y == a || y == b || y == c || squared_distance(cc, p[y]) > r2) return true;
+      if (geometry::in_equatorial(p[a], p[b], p[c], p[y]) < 0) return true;
+      const int s = geometry::orient3d(p[a], p[b], p[c], p[y]);
+      if (s == 0) return !(flat = true);
+      (s > 0 ? pos : neg).push_back(y);
+      return pos.empty() || neg.empty();
+    });
+    if (flat || pos.empty() == neg.empty()) return false;
+    vertex_id u = a, v = b;
+    const std::vector<vertex_id>& side = pos.empty() ? neg : pos;
+    if (pos.empty()) std::swap(u, v);  // (u, v, c, x) positively oriented
+    vertex_id x = side[0];
+    for (vertex_id y : side)
+      if (y != x && geometry::in_sphere_perturbed(p[u], p[v], p[c], p[x], p[y]) > 0) x = y;
+    // the sphere's ball in doubles, padded by a bound of its rounding (exact if that is not small)
+    const point3 e1 = p[v] - p[u], e2 = p[c] - p[u], e3 = p[x] - p[u];
+    double det = 0;
+    const point3 off = geometry::tetrahedron_circumcentre_offset(e1, e2, e3, det);
+    const double R = std::sqrt(dot(off, off));
+    if (!(R <= 64 * r)) return false;
+    const double l1 = std::sqrt(dot(e1, e1)), l2 = std::sqrt(dot(e2, e2)), l3 = std::sqrt(dot(e3, e3));
+    const double num = l1 * l1 * l2 * l3 + l2 * l2 * l3 * l1 + l3 * l3 * l1 * l2;  // bounds the terms' norms
+    const double err = 64 * detail::eps * (num / (2 * std::abs(det)) + R * l1 * l2 * l3 / std::abs(det));
+    point3 sc;
+    double sr = 0;
+    if (err <= 1e-6 * R) {
+      sc = p[u] + off;
+      sr = R * (1 + 1e-12) + err + 8 * detail::eps * detail::magnitude(sc) + 1e-300;
+    } else {
+      geometry::exact_circumball(p[u], p[v], p[c], p[x], sc, sr);
+    }
+    ball_box(sc, sr, lo, hi);
+    const double sr2 = sr * sr;
+    const bool empty = grid_.for_box(lo, hi).visit(lo, hi, [&](vertex_id y) {
+      if (y == a || y == b || y == c || y == x || squared_distance(sc, p[y]) > sr2) return true;
+      return geometry::in_sphere_perturbed(p[u], p[v], p[c], p[x], p[y]) <= 0;
+    });
+    if (empty) held = {sc, std::max(sr, distance(sc, cc) + r) * (1 + 1e-12)};
+    return empty;
   }
 
   /// Relation of vertex y (by its home) to facet f, with the shared vertex or edge.
@@ -1705,6 +1774,8 @@ class state3 : public state<3> {
     std::vector<range> work;
     for (std::uint32_t f = 0; f < facets_.size(); ++f) {
       facets_[f].was_clean.resize(facets_[f].triangles.size());
+      facets_[f].relaxed.resize(facets_[f].triangles.size(), 0);
+      facets_[f].held.resize(facets_[f].triangles.size());
       facets_[f].ball.resize(facets_[f].triangles.size());
       facets_[f].ball_known.resize(facets_[f].triangles.size(), 0);
       for (std::size_t a = 0; a < facets_[f].triangles.size(); a += piece)
@@ -1746,7 +1817,7 @@ class state3 : public state<3> {
       for (std::size_t t = w.a; t < w.b; ++t) {
         const auto& T = S.triangles[t];
         if (!S.ball_known[t]) S.ball[t] = detail::equatorial_bound(p[T[0]], p[T[1]], p[T[2]]), S.ball_known[t] = 1;
-        const auto [cc, r] = S.ball[t];
+        const auto [cc, r] = S.relaxed[t] ? S.held[t] : S.ball[t];  // a relaxed one's ball holds its equatorial one
         for (std::size_t a = 0; a < 3; ++a) box.lo[a] = std::min(box.lo[a], cc[a] - r), box.hi[a] = std::max(box.hi[a], cc[a] + r);
         const double rp = r * (1 + 1e-9) + pad;
         for (std::size_t a = 0; a < 3; ++a) {
@@ -1790,6 +1861,13 @@ class state3 : public state<3> {
           if (squared_distance(cc, p[v]) <= r * r && geometry::in_equatorial(p[T[0]], p[T[1]], p[T[2]], p[v]) >= 0) return true;
         return false;
       };
+      // a relaxed triangle: any point inserted since in its held ball
+      auto held_any = [&](const point3& cc, double r) {
+        if (!listed) return recent.near(cc, r) && !recent.visit_ball(cc, r, [&](vertex_id v) { return squared_distance(cc, p[v]) > r * r; });
+        for (vertex_id v : near)
+          if (squared_distance(cc, p[v]) <= r * r) return true;
+        return false;
+      };
       for (std::size_t t = w.a; t < w.b; ++t) {
         const auto& T = S.triangles[t];
         const auto [cc, r] = S.ball[t];
@@ -1797,8 +1875,20 @@ class state3 : public state<3> {
         if (!S.checked) std::sort(key.begin(), key.end());
         // clean at the last check: only a point inserted since can encroach it
         vertex_id y = no_vertex;
-        const bool known_clean = local ? !S.fresh[t] && S.was_clean[t] : S.checked || S.clean.contains(key);
-        if (!known_clean || held(T, cc, r)) y = facet_encroacher(T[0], T[1], T[2], cc, r, ties);
+        const bool known_clean = local ? !S.fresh[t] && (S.was_clean[t] || S.relaxed[t]) : S.checked || S.clean.contains(key);
+        const bool was_relaxed = known_clean && S.relaxed[t];
+        bool relaxed = was_relaxed;
+        if (!known_clean || (was_relaxed ? held_any(S.held[t].first, S.held[t].second) : held(T, cc, r))) {
+          y = facet_encroacher(T[0], T[1], T[2], cc, r, ties);
+          // encroached, but a Delaunay face all the same (options::delaunay_faces)
+          relaxed = y != no_vertex && opt_.delaunay_faces && delaunay_face(T[0], T[1], T[2], cc, r, S.held[t]);
+          if (relaxed) {
+            y = no_vertex;
+            const auto& [hc, hr] = S.held[t];
+            for (std::size_t a = 0; a < 3; ++a) box.lo[a] = std::min(box.lo[a], hc[a] - hr), box.hi[a] = std::max(box.hi[a], hc[a] + hr);
+          }
+        }
+        S.relaxed[t] = relaxed;
         // too large: circumradius above that of the facet lattice's equilateral triangle
         // (size / sqrt 3), not merely by rounding. An edge test ("longer than the size") cut the
         // near-right triangles where the lattice meets boundary strips and merged facets' seams,
@@ -1814,7 +1904,7 @@ class state3 : public state<3> {
           const double h = graded() ? size_at(cc, nn4 > 0 ? std::sqrt(lhs / nn4) * (1 + 1e-6) : std::numeric_limits<double>::infinity()) : opt_.size;
           too_big = lhs > nn4 * h * h * (1 + 2e-9);
         }
-        S.was_clean[t] = y == no_vertex && !too_big;
+        S.was_clean[t] = y == no_vertex && !too_big && !relaxed;
         if (y != no_vertex || too_big) mine.push_back({w.f, static_cast<std::uint32_t>(t), y});
       }
       box.quiet = mine.empty();

@@ -41,6 +41,13 @@ struct options {
   std::size_t max_steiner = 2'000'000;  // cap on inserted boundary points: a runaway becomes an error
   const rules::rule_set* rules = nullptr;  // nullptr: the embedded default conformer rules
   unsigned threads = 1;                    // subfacet encroachment checks run in parallel
+  // 3D: a subfacet whose equatorial ball holds points is not split while it is a face of the
+  // perturbed Delaunay tetrahedralization of all points (an empty sphere through it, found from
+  // the points in its ball, all on one side). The boundary is then conforming Delaunay but not
+  // Gabriel: Delaunay refinement (modules/refinement), whose encroachment test is the equatorial
+  // ball, must not start from it, nor point creation while meshing (the pipeline sets it only for
+  // a mesh of the conformed points alone). encroached() still reports those subfacets
+  bool delaunay_faces = false;
   bool merge_coplanar = true;  // 3D: merge coplanar facets of one marker (see gsse/plc/facet_regions.hpp)
   // receives, per conformer round, the number of splits and which rule and action fired how
   // often (one line each); empty: no trace. The library prints nothing itself (gsse-mesh passes
