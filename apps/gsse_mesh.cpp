@@ -84,8 +84,8 @@ void usage(std::FILE* to) {
       "  --no-merge keep coplanar facets of one marker apart (by default they are merged across\n"
       "           edges no other facet uses, as TetGen does without -M)\n"
       "  --gabriel 3D: keep every boundary and interface face's equatorial ball empty (the faces\n"
-      "           Gabriel; more points). By default a mesh without --quality or size rounds keeps\n"
-      "           faces whose ball holds points when they are Delaunay faces all the same\n"
+      "           Gabriel; more points). By default (but with --fill rules) faces whose ball holds\n"
+      "           points are kept when they are Delaunay faces all the same\n"
       "  --size-fit measure every edge against the size at its midpoint (the size field, or --size)\n"
       "           and report how many lie within [0.5, 1.5] of it, below and above, in the summary\n"
       "           and --stats (quality.size_fit); a pass over every edge, seconds at 5e5 points\n"
@@ -392,7 +392,8 @@ int run(const gsse::plc<D>& p, const args& a) {
     for (std::size_t k = 0; k < d.segments().size(); ++k)
       js << (k ? ", " : "") << "{\"name\": \"" << d.segments()[k].name() << "\", \"number\": " << d.segments()[k].number()
          << ", \"cells\": " << d.segments()[k].num_cells() << "}";
-    js << "], \"steiner\": " << r.steiner << ", \"volume_points\": " << r.volume_points
+    js << "], \"steiner\": " << r.steiner << ", \"boundary_faces\": \"" << (r.delaunay_faces ? "delaunay" : "gabriel")
+       << "\", \"volume_points\": " << r.volume_points
        << ", \"created_points\": " << r.creation.created << ", \"malloc\": ";
     // the allocator's settings the run had (apps/allocator_tuning.hpp): GLIBC_TUNABLES, or null
     const char* tunables = std::getenv("GLIBC_TUNABLES");
@@ -409,7 +410,6 @@ int run(const gsse::plc<D>& p, const args& a) {
     for (std::size_t k = 0; k < q.angle_histogram.size(); ++k) js << (k ? ", " : "") << q.angle_histogram[k];
     js << "]}, \"edges\": {\"shortest\": " << q.shortest_edge << ", \"shortest_input\": " << shortest_in
        << "}, \"uniform_size\": " << (r.uniform_size ? "true" : "false")
-       << ", \"boundary_faces\": \"" << (D == 2 ? "gabriel" : r.delaunay_faces ? "delaunay" : "gabriel") << "\""
        << ", \"min_size\": " << r.min_size;
     if (r.size_measured) {
       const auto& f = r.size_fit;

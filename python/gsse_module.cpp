@@ -31,6 +31,7 @@ struct mesh_options {
   std::size_t max_steiner = gsse::conformer::options{}.max_steiner;
   std::string fill = "lattice";
   bool merge = true;
+  bool gabriel = false;
 };
 
 gsse::pipeline::options pipeline_options(const mesh_options& m) {
@@ -44,6 +45,7 @@ gsse::pipeline::options pipeline_options(const mesh_options& m) {
   o.verify = m.verify;
   o.conform.max_steiner = m.max_steiner;
   o.conform.merge_coplanar = m.merge;
+  o.gabriel = m.gabriel;
   o.interior = m.fill == "rules" ? gsse::pipeline::fill::rules : gsse::pipeline::fill::lattice;
   return o;
 }
@@ -299,22 +301,22 @@ PYBIND11_MODULE(gsse, mod) {
       }, "a meshio.Mesh: the cells, then the faces; cell data 'segment' (for a face: the segment it is oriented "
          "into) and 'marker' (0 on cells)");
   mod.def("mesh_file", [](const std::string& path, double size, unsigned threads, bool verify, std::size_t max_steiner,
-                          const std::string& fill, bool merge, std::optional<py::array_t<double>> cloud) {
-    return mesh_file(path, {size, threads, verify, max_steiner, fill, merge}, cloud);
+                          const std::string& fill, bool merge, bool gabriel, std::optional<py::array_t<double>> cloud) {
+    return mesh_file(path, {size, threads, verify, max_steiner, fill, merge, gabriel}, cloud);
   }, py::arg("path"), py::kw_only(), py::arg("size") = 0.0, py::arg("threads") = 1u, py::arg("verify") = false,
      py::arg("max_steiner") = gsse::conformer::options{}.max_steiner, py::arg("fill") = "lattice", py::arg("merge") = true,
-     py::arg("cloud") = py::none(),
+     py::arg("gabriel") = false, py::arg("cloud") = py::none(),
      "Meshes a .poly, .smesh, .off, .stl or Gmsh surface .msh with gsse-mesh's options; raises on bad input "
      "(message names the file and line) and when verify=True finds a problem.");
   mod.def("mesh", [](py::array_t<double, py::array::c_style | py::array::forcecast> points, py::object facets,
                      std::optional<std::vector<int>> markers, std::optional<std::vector<py::tuple>> regions,
                      std::optional<py::array_t<double>> holes, std::optional<std::map<int, std::string>> names, double size,
-                     unsigned threads, bool verify, std::size_t max_steiner, const std::string& fill, bool merge) {
-    return mesh_arrays(points, facets, markers, regions, holes, names, {size, threads, verify, max_steiner, fill, merge});
+                     unsigned threads, bool verify, std::size_t max_steiner, const std::string& fill, bool merge, bool gabriel) {
+    return mesh_arrays(points, facets, markers, regions, holes, names, {size, threads, verify, max_steiner, fill, merge, gabriel});
   }, py::arg("points"), py::arg("facets"), py::kw_only(), py::arg("markers") = py::none(), py::arg("regions") = py::none(),
      py::arg("holes") = py::none(), py::arg("marker_names") = py::none(), py::arg("size") = 0.0, py::arg("threads") = 1u,
      py::arg("verify") = false, py::arg("max_steiner") = gsse::conformer::options{}.max_steiner, py::arg("fill") = "lattice",
-     py::arg("merge") = true,
+     py::arg("merge") = true, py::arg("gabriel") = false,
      "Meshes a PLC given as arrays: points (n, 2|3); facets: 3D polygons (lists of point indices from 0) or a (k, 3) "
      "array, 2D a (k, 2) array of segments; markers per facet; regions [(x, y[, z], number[, name])]; holes (h, D).");
   py::register_exception_translator([](std::exception_ptr p) {

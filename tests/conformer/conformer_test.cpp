@@ -10,6 +10,8 @@
 #include <set>
 
 #include "gsse/conformer/conformer.hpp"
+#include "gsse/geometry/circumcentre.hpp"
+#include "gsse/geometry/predicates.hpp"
 #include "gsse/conformer/regions.hpp"
 #include "gsse/io/poly.hpp"
 #include "gsse/pipeline/pipeline.hpp"
@@ -207,7 +209,35 @@ BOOST_AUTO_TEST_CASE(delaunay_faces_keep_encroached_subfacets_that_are_delaunay)
   // encroached() is the Gabriel post-check still: it reports the kept subfacets
   cf::options o;
   o.delaunay_faces = true;
-  BOOST_TEST(!cf::encroached(cf::conform(p, inside, o)).empty());
+  const auto b = cf::conform(p, inside, o);
+  BOOST_TEST(!cf::encroached(b).empty());
+  // each kept face's apex (boundary::face_apex) and face_encroached: on the line through the
+  // face's circumcentre, across from the apex, a point just inside the sphere through the face and
+  // the apex (beyond the equatorial ball) breaks it, one just outside does not
+  BOOST_TEST_REQUIRE(b.face_apex.size() == b.faces.size());
+  std::size_t apexes = 0, beyond_ball = 0;
+  for (std::size_t f = 0; f < b.faces.size(); ++f) {
+    if (b.face_apex[f] == no_vertex) continue;
+    ++apexes;
+    const auto& F = b.faces[f];
+    const point3 &a = b.points[F[0]], &c = b.points[F[1]], &d = b.points[F[2]], &x = b.points[b.face_apex[f]];
+    const point3 u = c - a, v = d - a, n = cross(u, v);
+    const point3 o0 = a + geometry::triangle_circumcentre_offset(u, v, n, dot(n, n));
+    double det = 0;
+    const point3 s0 = a + geometry::tetrahedron_circumcentre_offset(u, v, x - a, det);
+    const double R = distance(s0, a), r = distance(o0, a);
+    point3 away = (1 / std::sqrt(dot(n, n))) * n;
+    if (dot(away, x - a) > 0) away = -1.0 * away;
+    const double reach = dot(s0 - o0, away) + std::sqrt(R * R - dot(s0 - o0, s0 - o0) + dot(s0 - o0, away) * dot(s0 - o0, away));
+    if (reach < 1.01 * r) continue;  // the sphere hardly reaches past the ball there
+    ++beyond_ball;
+    const point3 in = o0 + (0.999 * reach) * away, out = o0 + (1.001 * reach) * away;
+    BOOST_TEST(geometry::in_equatorial(a, c, d, in) < 0);
+    BOOST_TEST(cf::face_encroached(b, f, in), "face " << f << ": a point in the sphere across from its apex");
+    BOOST_TEST(!cf::face_encroached(b, f, out), "face " << f << ": a point past the sphere");
+  }
+  BOOST_TEST(apexes >= kept, apexes << " faces with an apex");
+  BOOST_TEST(beyond_ball > 0u);
   // the rest: no more points, every subfacet Delaunay
   for (const char* name : {"mosfet", "stack"})
     std::visit(

@@ -42,6 +42,19 @@ def main():
         check([n for _, n in m.segments] == [x["name"] for x in s["segments"]] and len(m.cell_segments) == len(m.cells),
               f"segments {m.segments[:3]}..., one number per cell")
         check(m.steiner == s["steiner"] and set(m.times) >= {"conform", "mesh"}, f"steiner {m.steiner}, stage times {sorted(m.times)}")
+        # 1b. boundary faces: without a size, faces that are Delaunay but not Gabriel are kept;
+        # gabriel=True (--gabriel) keeps every equatorial ball empty, with more points
+        lo, hi = m.points.min(axis=0), m.points.max(axis=0)
+        cloud = lo + (hi - lo) * np.random.default_rng(3).uniform(0.05, 0.95, (2000, 3))
+        d = gsse.mesh_file(mosfet, threads=2, verify=True, cloud=cloud)
+        g = gsse.mesh_file(mosfet, threads=2, verify=True, cloud=cloud, gabriel=True)
+        cloud_node = os.path.join(work, "cloud.node")
+        with open(cloud_node, "w") as f:
+            f.write(f"{len(cloud)} 3 0 0\n" + "".join(f"{i + 1} {x!r} {y!r} {z!r}\n" for i, (x, y, z) in enumerate(cloud)))
+        subprocess.run([mesh, mosfet, "--cloud", cloud_node, "--gabriel", "--quiet", "--stats", stats], check=True)
+        s = json.load(open(stats))
+        check(d.steiner < g.steiner and g.steiner == s["steiner"] and s["boundary_faces"] == "gabriel",
+              f"gabriel=False: {d.steiner} Steiner points, gabriel=True: {g.steiner}, as gsse-mesh --gabriel")
         # 2. arrays: a unit cube, bottom facet marker 1, top 2 (named), one region
         P = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], float)
         F = [[0, 1, 2, 3], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]

@@ -990,6 +990,7 @@ struct facet_state {
   // point inserted since lies in `held`
   std::vector<char> relaxed;
   std::vector<std::pair<point3, double>> held;  // per relaxed triangle: the ball a point must enter to break it
+  std::vector<vertex_id> apex;                   // per relaxed triangle: x (boundary::face_apex)
   std::vector<char> fresh;  // after a local rewrap since the last check: per triangle, new since
   bool flat_local = false;  // fresh also marks the triangles new since the last flat_pairs
   // per piece of 512 subfacets at the last check: the box of their balls, and whether none was
@@ -1512,7 +1513,7 @@ class state3 : public state<3> {
   /// the sphere through abc and the apex on the other side, whose cap on x's side lies in the
   /// equatorial ball).
   bool delaunay_face(vertex_id a, vertex_id b, vertex_id c, const point3& cc, double r,
-                     std::pair<point3, double>& held) const {
+                     std::pair<point3, double>& held, vertex_id& apex) const {
     const auto& p = out_.points;
     if (geometry::collinear(p[a], p[b], p[c])) return false;
     point3 lo, hi;
@@ -1535,30 +1536,23 @@ class state3 : public state<3> {
     vertex_id x = side[0];
     for (vertex_id y : side)
       if (y != x && geometry::in_sphere_perturbed(p[u], p[v], p[c], p[x], p[y]) > 0) x = y;
-    // the sphere's ball in doubles, padded by a bound of its rounding (exact if that is not small)
-    const point3 e1 = p[v] - p[u], e2 = p[c] - p[u], e3 = p[x] - p[u];
-    double det = 0;
-    const point3 off = geometry::tetrahedron_circumcentre_offset(e1, e2, e3, det);
-    const double R = std::sqrt(dot(off, off));
-    if (!(R <= 64 * r)) return false;
-    const double l1 = std::sqrt(dot(e1, e1)), l2 = std::sqrt(dot(e2, e2)), l3 = std::sqrt(dot(e3, e3));
-    const double num = l1 * l1 * l2 * l3 + l2 * l2 * l3 * l1 + l3 * l3 * l1 * l2;  // bounds the terms' norms
-    const double err = 64 * detail::eps * (num / (2 * std::abs(det)) + R * l1 * l2 * l3 / std::abs(det));
+    // the sphere's ball (doubles padded by a bound of their rounding, exact where that is not
+    // small); a sphere far larger than the equatorial ball is not scanned
     point3 sc;
     double sr = 0;
-    if (err <= 1e-6 * R) {
-      sc = p[u] + off;
-      sr = R * (1 + 1e-12) + err + 8 * detail::eps * detail::magnitude(sc) + 1e-300;
-    } else {
-      geometry::exact_circumball(p[u], p[v], p[c], p[x], sc, sr);
+    {
+      double det = 0;
+      const point3 off = geometry::tetrahedron_circumcentre_offset(p[v] - p[u], p[c] - p[u], p[x] - p[u], det);
+      if (!(dot(off, off) <= 64.0 * 64.0 * r2)) return false;
     }
+    if (!geometry::circumball_bound(p[u], p[v], p[c], p[x], sc, sr)) return false;
     ball_box(sc, sr, lo, hi);
     const double sr2 = sr * sr;
     const bool empty = grid_.for_box(lo, hi).visit(lo, hi, [&](vertex_id y) {
       if (y == a || y == b || y == c || y == x || squared_distance(sc, p[y]) > sr2) return true;
       return geometry::in_sphere_perturbed(p[u], p[v], p[c], p[x], p[y]) <= 0;
     });
-    if (empty) held = {sc, std::max(sr, distance(sc, cc) + r) * (1 + 1e-12)};
+    if (empty) held = {sc, std::max(sr, distance(sc, cc) + r) * (1 + 1e-12)}, apex = x;
     return empty;
   }
 
@@ -1776,6 +1770,7 @@ class state3 : public state<3> {
       facets_[f].was_clean.resize(facets_[f].triangles.size());
       facets_[f].relaxed.resize(facets_[f].triangles.size(), 0);
       facets_[f].held.resize(facets_[f].triangles.size());
+      facets_[f].apex.resize(facets_[f].triangles.size(), no_vertex);
       facets_[f].ball.resize(facets_[f].triangles.size());
       facets_[f].ball_known.resize(facets_[f].triangles.size(), 0);
       for (std::size_t a = 0; a < facets_[f].triangles.size(); a += piece)
@@ -1881,7 +1876,7 @@ class state3 : public state<3> {
         if (!known_clean || (was_relaxed ? held_any(S.held[t].first, S.held[t].second) : held(T, cc, r))) {
           y = facet_encroacher(T[0], T[1], T[2], cc, r, ties);
           // encroached, but a Delaunay face all the same (options::delaunay_faces)
-          relaxed = y != no_vertex && opt_.delaunay_faces && delaunay_face(T[0], T[1], T[2], cc, r, S.held[t]);
+          relaxed = y != no_vertex && opt_.delaunay_faces && delaunay_face(T[0], T[1], T[2], cc, r, S.held[t], S.apex[t]);
           if (relaxed) {
             y = no_vertex;
             const auto& [hc, hr] = S.held[t];
@@ -2734,6 +2729,14 @@ class state3 : public state<3> {
     // subsegment splits above changed are triangulated and checked again, in the first round
     std::map<std::uint32_t, std::vector<std::array<vertex_id, 3>>> had;  // by input facet, in prev's order
     for (std::size_t k = 0; k < prev.faces.size(); ++k) had[prev.face_source[k]].push_back(prev.faces[k]);
+    // the faces prev kept with an apex (options::delaunay_faces) were not clean: checked afresh
+    std::set<std::array<vertex_id, 3>> kept;
+    for (std::size_t k = 0; k < prev.face_apex.size(); ++k)
+      if (prev.face_apex[k] != no_vertex) {
+        auto T = prev.faces[k];
+        std::sort(T.begin(), T.end());
+        kept.insert(T);
+      }
     if (prev.meshed_sides.size() == facets_.size()) meshed_ = prev.meshed_sides;
     seen_.assign(facets_.size(), 0);
     for (std::uint32_t f = 0; f < facets_.size(); ++f) {
@@ -2755,7 +2758,14 @@ class state3 : public state<3> {
     for (auto& S : facets_) {
       auto it = had.find(S.source);
       if (it == had.end() || S.checked) continue;
-      S.clean = key_set<3>(it->second);
+      if (kept.empty()) {
+        S.clean = key_set<3>(it->second);
+      } else {
+        std::vector<std::array<vertex_id, 3>> clean;
+        for (const auto& T : it->second)
+          if (!kept.count(T)) clean.push_back(T);
+        S.clean = key_set<3>(clean);
+      }
     }
     checked_upto_ = prev.points.size();
     return rounds(std::move(wanted), keep);
@@ -2840,11 +2850,16 @@ class state3 : public state<3> {
     }
     out_.faces.clear();
     out_.face_source.clear();
-    for (std::uint32_t f = 0; f < facets_.size(); ++f)
-      for (const auto& t : facets_[f].triangles) {
-        out_.faces.push_back(t);
-        out_.face_source.push_back(facets_[f].source);
+    out_.face_apex.clear();
+    for (std::uint32_t f = 0; f < facets_.size(); ++f) {
+      const auto& S = facets_[f];
+      for (std::size_t t = 0; t < S.triangles.size(); ++t) {
+        out_.faces.push_back(S.triangles[t]);
+        out_.face_source.push_back(S.source);
+        // the last check's verdict holds: the rounds end with a check that split nothing
+        if (opt_.delaunay_faces) out_.face_apex.push_back(t < S.relaxed.size() && S.relaxed[t] ? S.apex[t] : no_vertex);
       }
+    }
     out_.protect = ball_;
     for (std::size_t v = 0; v < guard_.size() && v < out_.protect.size(); ++v)
       if (guard_[v] > 0) out_.protect[v] = guard_[v];
@@ -2959,6 +2974,18 @@ template <>
 boundary<2> session<2>::next(const boundary<2>& previous, const std::vector<point2>& added, const std::vector<std::size_t>& split) {
   return resume(impl_->p, previous, added, split, impl_->o);
 }
+bool face_encroached(const boundary<3>& b, std::size_t f, const point3& q) {
+  const auto& p = b.points;
+  const auto& F = b.faces[f];
+  if (geometry::in_equatorial(p[F[0]], p[F[1]], p[F[2]], q) >= 0) return true;
+  if (f >= b.face_apex.size() || b.face_apex[f] == no_vertex) return false;
+  const point3& x = p[b.face_apex[f]];
+  const int sx = geometry::orient3d(p[F[0]], p[F[1]], p[F[2]], x), sq = geometry::orient3d(p[F[0]], p[F[1]], p[F[2]], q);
+  if (sq == 0 || sq == sx) return false;  // in the plane, or on x's side, outside the equatorial ball
+  // (u, v, w, x) positively oriented: in_sphere > 0 is inside
+  return sx > 0 ? geometry::in_sphere(p[F[0]], p[F[1]], p[F[2]], x, q) >= 0 : geometry::in_sphere(p[F[1]], p[F[0]], p[F[2]], x, q) >= 0;
+}
+
 namespace {
 /// Whether free points `added` leave boundary `b` (conforming) as it is: none lies in the closed
 /// equatorial ball of a subfacet or the closed diametral ball of an edge of one whose ends both
@@ -2997,6 +3024,16 @@ bool leaves_unchanged(const boundary<3>& b, const std::vector<point3>& added, un
       if (any_in(c, r, [&](const point3& q) { return geometry::in_equatorial(p[F[0]], p[F[1]], p[F[2]], q) >= 0; })) {
         hit[k] = 1;
         break;
+      }
+      // a face kept with an apex: also the sphere through it and the apex (face_encroached)
+      if (f < b.face_apex.size() && b.face_apex[f] != no_vertex) {
+        point3 sc;
+        double sr = 0;
+        if (!geometry::circumball_bound(p[F[0]], p[F[1]], p[F[2]], p[b.face_apex[f]], sc, sr) ||
+            any_in(sc, sr, [&](const point3& q) { return face_encroached(b, f, q); })) {
+          hit[k] = 1;
+          break;
+        }
       }
       for (std::size_t i = 0; i < 3 && !hit[k]; ++i) {
         const vertex_id u = F[i], v = F[(i + 1) % 3];

@@ -499,9 +499,9 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   // the boundary, held through the first mesh; their first round, if any, resumes instead)
   if constexpr (D == 3)
     if (coarse) co.sides_from = &coarse->first, co.sides_labels = &coarse->second;
-  // the refinement's rounds and the front's point creation test the equatorial balls of the
-  // boundary faces: a boundary that is Delaunay but not Gabriel is only for a mesh of its points
-  co.delaunay_faces = D == 3 && !o.gabriel && !refining && !creating;
+  // the refinement's rounds test new points against each kept face's sphere too
+  // (conformer::face_encroached); the front's point creation tests equatorial balls only
+  co.delaunay_faces = D == 3 && !o.gabriel && !creating;
   r.delaunay_faces = co.delaunay_faces;
   auto b = o.quality ? session.emplace(p, co).start(volume) : conform<D>{}(p, volume, co);
   r.steiner = b.steiner;

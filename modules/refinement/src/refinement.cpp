@@ -876,15 +876,27 @@ plan<D> plan_round(const cells_by_region<D>& cells_of, const conformer::boundary
         for_each(execution::par(threads), pieces, [&](std::size_t q) {
           for (std::size_t f = q * face_piece; f < std::min(b.faces.size(), (q + 1) * face_piece); ++f) {
             const auto& F = b.faces[f];
-            const auto box = face_box(bp, F);
+            auto box = face_box(bp, F);
+            // 3D, a face the conformer kept with an apex (conformer::boundary::face_apex): a point
+            // across it breaks it inside the sphere through it and the apex, beyond its ball
+            const bool apex = D == 3 && f < b.face_apex.size() && b.face_apex[f] != no_vertex;
+            if constexpr (D == 3)
+              if (apex) {
+                point3 sc;
+                double sr = 0;
+                if (geometry::circumball_bound(bp[F[0]], bp[F[1]], bp[F[2]], bp[b.face_apex[f]], sc, sr))
+                  for (std::size_t k = 0; k < 3; ++k) box.lo[k] = std::min(box.lo[k], sc[k] - sr), box.hi[k] = std::max(box.hi[k], sc[k] + sr);
+                else
+                  for (std::size_t k = 0; k < 3; ++k) box.lo[k] = box.hi[k] = std::numeric_limits<double>::quiet_NaN();  // every candidate is asked
+              }
             auto test = [&](vertex_id g, const point<D>& at) {
               if (box.contains(at)) {
-                int s;
+                bool s;
                 if constexpr (D == 2)
-                  s = geometry::in_diametral(bp[F[0]], bp[F[1]], at);
+                  s = geometry::in_diametral(bp[F[0]], bp[F[1]], at) >= 0;
                 else
-                  s = geometry::in_equatorial(bp[F[0]], bp[F[1]], bp[F[2]], at);
-                if (s >= 0) hits[q].push_back({g, static_cast<std::uint32_t>(f)});
+                  s = apex ? conformer::face_encroached(b, f, at) : geometry::in_equatorial(bp[F[0]], bp[F[1]], bp[F[2]], at) >= 0;
+                if (s) hits[q].push_back({g, static_cast<std::uint32_t>(f)});
               }
               return true;
             };

@@ -42,6 +42,33 @@ inline void exact_circumball(const point3& a, const point3& b, const point3& c, 
   const auto o = CGAL::circumcenter(ex(a), ex(b), ex(c), ex(d));
   round_out<3>(o, CGAL::squared_distance(o, ex(a)), centre, radius);
 }
+/// Circumball of the tetrahedron abcd: a double ball containing the exact one, constructed in
+/// doubles and padded by a bound of their rounding where that bound is below 1e-6 of the radius,
+/// else exactly (`exact_circumball`). Returns false, and nothing, for a flat tetrahedron.
+inline bool circumball_bound(const point3& a, const point3& b, const point3& c, const point3& d, point3& centre,
+                             double& radius) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const point3 u = b - a, v = c - a, w = d - a;
+  const point3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
+  const double det = dot(u, vw);
+  if (!(std::abs(det) > 0)) return false;
+  const double lu = std::sqrt(dot(u, u)), lv = std::sqrt(dot(v, v)), lw = std::sqrt(dot(w, w));
+  const point3 off = (1.0 / (2 * det)) * (dot(u, u) * vw + dot(v, v) * wu + dot(w, w) * uv);
+  const double R = std::sqrt(dot(off, off));
+  // the numerator's terms are at most |u|^2 |v| |w| and the like; det's error at most a few eps
+  // of |u| |v| |w|: 64 eps of each is far above what the operations round
+  const double err = 64 * eps * ((lu * lu * lv * lw + lv * lv * lw * lu + lw * lw * lu * lv) / (2 * std::abs(det)) +
+                                 R * lu * lv * lw / std::abs(det));
+  if (std::isfinite(err) && err <= 1e-6 * R) {
+    centre = a + off;
+    double m = 0;
+    for (double x : centre) m = std::max(m, std::abs(x));
+    radius = R * (1 + 1e-12) + err + 8 * eps * m + std::numeric_limits<double>::denorm_min();
+    return true;
+  }
+  exact_circumball(a, b, c, d, centre, radius);
+  return true;
+}
 /// Equatorial ball of the 3D triangle abc (centre in its plane): a double ball containing it.
 inline void exact_circumball(const point3& a, const point3& b, const point3& c, point3& centre, double& radius) {
   using namespace detail;

@@ -43,10 +43,11 @@ struct options {
   unsigned threads = 1;                    // subfacet encroachment checks run in parallel
   // 3D: a subfacet whose equatorial ball holds points is not split while it is a face of the
   // perturbed Delaunay tetrahedralization of all points (an empty sphere through it, found from
-  // the points in its ball, all on one side). The boundary is then conforming Delaunay but not
-  // Gabriel: Delaunay refinement (modules/refinement), whose encroachment test is the equatorial
-  // ball, must not start from it, nor point creation while meshing (the pipeline sets it only for
-  // a mesh of the conformed points alone). encroached() still reports those subfacets
+  // the points in its ball, all on one side); boundary::face_apex records the sphere. The boundary
+  // is then conforming Delaunay but not Gabriel: a new point must be tested with
+  // face_encroached(), not the equatorial ball alone (Delaunay refinement does; the front's point
+  // creation does not, and the pipeline leaves the option off for it). encroached() still
+  // reports those subfacets
   bool delaunay_faces = false;
   bool merge_coplanar = true;  // 3D: merge coplanar facets of one marker (see gsse/plc/facet_regions.hpp)
   // receives, per conformer round, the number of splits and which rule and action fired how
@@ -87,7 +88,19 @@ struct boundary {
   // its positive / negative side lies in a segment, if the conformer needed to know (slanted
   // facets); resume() takes it over instead of labelling again. Empty otherwise.
   std::vector<std::array<bool, 2>> meshed_sides;
+  // 3D, options::delaunay_faces: per face, no_vertex if its closed equatorial ball holds no point;
+  // else x, the apex on the side of the points in it: the sphere through the face and x is empty,
+  // so the face is a Delaunay face. A new point on x's side can break it only inside the
+  // equatorial ball, one on the other side only inside that sphere (face_encroached). Empty
+  // without the option (every face's ball empty)
+  std::vector<vertex_id> face_apex;
 };
+
+/// Whether a new point q would make face f of `b` no Delaunay face (as far as the face's
+/// certificate tells; a tie counts): q in the closed equatorial ball, or, for a face kept with an
+/// apex x (boundary::face_apex), q strictly on the other side in the closed sphere through the face
+/// and x. Exact.
+bool face_encroached(const boundary<3>& b, std::size_t f, const point3& q);
 
 /// Conforms the PLC's boundary with respect to itself and `volume` points (which are kept as
 /// given; points on the boundary become boundary vertices). Throws conform_error on invalid
