@@ -502,10 +502,10 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   // a mesh of the conformed points alone keeps Delaunay faces that are not Gabriel. The
   // refinement's rounds could start from them too (they test each kept face's sphere,
   // conformer::face_encroached): 15% fewer points on the corpus at --quality 1.414, but a
-  // segment's cavities left to the front mesher once (gmsh_revolve), and the knife of
-  // refinement_quality converging without its small-angle exceptions, both unexplained yet
-  // (docs/benchmarks.md, seventy-second part); the front's point creation tests equatorial
-  // balls only
+  // segment's cavities left to the front mesher once (gmsh_revolve, unexplained yet), and the
+  // knife of refinement_quality converges and verifies without the small-angle exceptions that
+  // test shows are needed (docs/benchmarks.md, seventy-second part); the front's point creation
+  // tests equatorial balls only
   co.delaunay_faces = D == 3 && !o.gabriel && !refining && !creating;
   r.delaunay_faces = co.delaunay_faces;
   auto b = o.quality ? session.emplace(p, co).start(volume) : conform<D>{}(p, volume, co);
