@@ -1540,12 +1540,7 @@ class state3 : public state<3> {
     // small); a sphere far larger than the equatorial ball is not scanned
     point3 sc;
     double sr = 0;
-    {
-      double det = 0;
-      const point3 off = geometry::tetrahedron_circumcentre_offset(p[v] - p[u], p[c] - p[u], p[x] - p[u], det);
-      if (!(dot(off, off) <= 64.0 * 64.0 * r2)) return false;
-    }
-    if (!geometry::circumball_bound(p[u], p[v], p[c], p[x], sc, sr)) return false;
+    if (!geometry::circumball_bound(p[u], p[v], p[c], p[x], sc, sr, 64 * r)) return false;
     ball_box(sc, sr, lo, hi);
     const double sr2 = sr * sr;
     const bool empty = grid_.for_box(lo, hi).visit(lo, hi, [&](vertex_id y) {

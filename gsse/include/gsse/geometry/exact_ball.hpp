@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 
+#include "gsse/geometry/circumcentre.hpp"
 #include "gsse/geometry/point.hpp"
 
 namespace gsse::geometry {
@@ -44,16 +45,16 @@ inline void exact_circumball(const point3& a, const point3& b, const point3& c, 
 }
 /// Circumball of the tetrahedron abcd: a double ball containing the exact one, constructed in
 /// doubles and padded by a bound of their rounding where that bound is below 1e-6 of the radius,
-/// else exactly (`exact_circumball`). Returns false, and nothing, for a flat tetrahedron.
+/// else exactly (`exact_circumball`). Returns false, and nothing, for a flat tetrahedron or one
+/// whose double circumradius exceeds `max_radius` (no exact construction is made for it).
 inline bool circumball_bound(const point3& a, const point3& b, const point3& c, const point3& d, point3& centre,
-                             double& radius) {
+                             double& radius, double max_radius = std::numeric_limits<double>::infinity()) {
   constexpr double eps = std::numeric_limits<double>::epsilon();
   const point3 u = b - a, v = c - a, w = d - a;
-  const point3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
-  const double det = dot(u, vw);
-  if (!(std::abs(det) > 0)) return false;
+  double det = 0;
+  const point3 off = tetrahedron_circumcentre_offset(u, v, w, det);
+  if (!(std::abs(det) > 0) || !(dot(off, off) <= max_radius * max_radius)) return false;
   const double lu = std::sqrt(dot(u, u)), lv = std::sqrt(dot(v, v)), lw = std::sqrt(dot(w, w));
-  const point3 off = (1.0 / (2 * det)) * (dot(u, u) * vw + dot(v, v) * wu + dot(w, w) * uv);
   const double R = std::sqrt(dot(off, off));
   // the numerator's terms are at most |u|^2 |v| |w| and the like; det's error at most a few eps
   // of |u| |v| |w|: 64 eps of each is far above what the operations round
