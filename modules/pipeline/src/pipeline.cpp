@@ -499,14 +499,11 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   // the boundary, held through the first mesh; their first round, if any, resumes instead)
   if constexpr (D == 3)
     if (coarse) co.sides_from = &coarse->first, co.sides_labels = &coarse->second;
-  // a mesh of the conformed points alone keeps Delaunay faces that are not Gabriel. The
-  // refinement's rounds could start from them too (they test each kept face's sphere,
-  // conformer::face_encroached): 15% fewer points on the corpus at --quality 1.414, but a
-  // segment's cavities left to the front mesher once (gmsh_revolve, unexplained yet), and the
-  // knife of refinement_quality converges and verifies without the small-angle exceptions that
-  // test shows are needed (docs/benchmarks.md, seventy-second part); the front's point creation
-  // tests equatorial balls only
-  co.delaunay_faces = D == 3 && !o.gabriel && !refining && !creating;
+  // boundary and interface faces that are Delaunay but not Gabriel are kept; the refinement's
+  // rounds test each kept face's sphere (conformer::face_encroached). The front's point creation
+  // tests equatorial balls only (docs/design-decisions.md, "Boundary faces need to be Delaunay,
+  // not Gabriel")
+  co.delaunay_faces = D == 3 && !o.gabriel && !creating;
   r.delaunay_faces = co.delaunay_faces;
   auto b = o.quality ? session.emplace(p, co).start(volume) : conform<D>{}(p, volume, co);
   r.steiner = b.steiner;

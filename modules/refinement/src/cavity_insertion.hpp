@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <utility>
 #include <vector>
@@ -275,6 +276,66 @@ class cavity {
     }
     return true;
   }
+  /// Lawson's flips across the faces between cells that are not locally Delaunay (perturbed, as
+  /// in_ball), the walls untouched: a 2-3 flip where the two cells' union is convex across the
+  /// face, a 3-2 flip where one edge of it is reflex and has exactly three cells about it. Until
+  /// no such face is left, or none left can be flipped either way (four points coplanar, or more
+  /// cells about the reflex edge). What insert(..., shrink) left can need them: a cell a point cut
+  /// back did not take may hold a later point in its ball. Returns locally_delaunay().
+  bool flip_to_delaunay() {
+    std::vector<std::pair<std::uint32_t, int>> todo;
+    for (std::uint32_t a = 0; a < c_.size(); ++a)
+      if (!spare_[a])
+        for (int i = 0; i < 4; ++i)
+          if (nb_[a][static_cast<std::size_t>(i)] > static_cast<std::int32_t>(a)) todo.push_back({a, i});
+    // each flip lowers the lifted triangulation (the perturbed in-sphere is one lifting), so the
+    // flips end; the budget only bounds a bug
+    for (std::size_t budget = 64 * c_.size() + 1024; !todo.empty() && budget > 0; --budget) {
+      const auto [a, i] = todo.back();
+      todo.pop_back();
+      if (a >= c_.size() || spare_[a]) continue;
+      const std::int32_t n = nb_[a][static_cast<std::size_t>(i)];
+      if (n < 0) continue;
+      const auto b = static_cast<std::uint32_t>(n);
+      const int j = back_of(b, a);
+      if (j < 0) continue;
+      const vertex_id u = c_[a][static_cast<std::size_t>(i)], v = c_[b][static_cast<std::size_t>(j)];
+      if (!in_ball(a, v)) continue;
+      const face f = face_of(c_[a], i);  // (f, u) positive
+      std::array<int, 3> o{};
+      for (int k = 0; k < 3; ++k)
+        o[static_cast<std::size_t>(k)] = geometry::orient3d(p_[f[static_cast<std::size_t>(k)]], p_[f[static_cast<std::size_t>((k + 1) % 3)]], p_[v], p_[u]);
+      std::array<cell, 3> made{};
+      std::array<std::uint32_t, 3> olds{a, b, 0};
+      std::size_t old_count = 2, made_count = 0;
+      if (o[0] > 0 && o[1] > 0 && o[2] > 0) {  // 2-3: the edge uv through the face
+        for (std::size_t k = 0; k < 3; ++k) made[k] = {f[k], f[(k + 1) % 3], v, u};
+        made_count = 3;
+      } else {
+        int reflex = -1, negative = 0;
+        for (int k = 0; k < 3; ++k)
+          if (o[static_cast<std::size_t>(k)] < 0) reflex = k, ++negative;
+        if (negative != 1 || std::find(o.begin(), o.end(), 0) != o.end()) continue;
+        const auto k = static_cast<std::size_t>(reflex);
+        const vertex_id e0 = f[k], e1 = f[(k + 1) % 3], w = f[(k + 2) % 3];
+        // the third cell about the edge e0 e1: a's neighbour opposite w, holding v
+        const int wi = index_of(c_[a], w);
+        const std::int32_t t = nb_[a][static_cast<std::size_t>(wi)];
+        if (t < 0 || index_of(c_[static_cast<std::size_t>(t)], v) < 0) continue;
+        const cell c0{e0, v, w, u}, c1{v, e1, w, u};  // (e0 e1 w u) with e1, then e0, replaced by v
+        if (geometry::orient3d(p_[c0[0]], p_[c0[1]], p_[c0[2]], p_[c0[3]]) <= 0 ||
+            geometry::orient3d(p_[c1[0]], p_[c1[1]], p_[c1[2]], p_[c1[3]]) <= 0)
+          continue;
+        olds[2] = static_cast<std::uint32_t>(t), old_count = 3;
+        made[0] = c0, made[1] = c1, made_count = 2;
+      }
+      if (!replace(std::span<const std::uint32_t>(olds.data(), old_count), std::span<const cell>(made.data(), made_count))) continue;
+      for (const std::uint32_t at : places_)
+        for (int m = 0; m < 4; ++m)
+          if (nb_[at][static_cast<std::size_t>(m)] >= 0) todo.push_back({at, m});
+    }
+    return locally_delaunay();
+  }
   /// Every face across which a cell has a droppable wall, facing into its cell, in place order.
   std::vector<face> droppable_walls() const {
     std::vector<face> out;
@@ -294,6 +355,91 @@ class cavity {
     std::array<std::int32_t, 3> link;  // across faces 0-2: another star cell (>= 0) or a wall
   };
 
+  static int index_of(const cell& c, vertex_id v) {
+    for (int k = 0; k < 4; ++k)
+      if (c[static_cast<std::size_t>(k)] == v) return k;
+    return -1;
+  }
+  // the place of a in b's neighbours, or -1
+  int back_of(std::uint32_t b, std::uint32_t a) const {
+    for (int k = 0; k < 4; ++k)
+      if (nb_[b][static_cast<std::size_t>(k)] == static_cast<std::int32_t>(a)) return k;
+    return -1;
+  }
+  // the cells at `olds` (neighbours of one another) replaced by `made`, which fill the same
+  // polyhedron: each face of a made cell meets another made cell or an outer face of the olds
+  // (a neighbour or a wall, kept). Nothing changes and false comes back if one does not. The made
+  // cells' places in places_
+  bool replace(std::span<const std::uint32_t> olds, std::span<const cell> made) {
+    auto key = [](face g) {
+      std::sort(g.begin(), g.end());
+      return g;
+    };
+    struct outer {
+      face k;
+      std::int32_t n;
+      int back;  // n's place of the old cell, when n >= 0
+    };
+    std::vector<outer> outs;
+    for (const std::uint32_t a : olds)
+      for (int i = 0; i < 4; ++i) {
+        const std::int32_t n = nb_[a][static_cast<std::size_t>(i)];
+        if (n >= 0 && std::find(olds.begin(), olds.end(), static_cast<std::uint32_t>(n)) != olds.end()) continue;
+        outs.push_back({key(face_of(c_[a], i)), n, n >= 0 ? back_of(static_cast<std::uint32_t>(n), a) : -1});
+      }
+    // per made cell and face: another made cell (t * 4 + j) or an outer face (-1 - index)
+    std::vector<std::array<std::int64_t, 4>> link(made.size());
+    std::vector<char> used(outs.size(), 0);
+    for (std::size_t t = 0; t < made.size(); ++t)
+      for (int i = 0; i < 4; ++i) {
+        const face g = key(face_of(made[t], i));
+        std::int64_t to = std::numeric_limits<std::int64_t>::min();
+        for (std::size_t s = 0; s < made.size() && to == std::numeric_limits<std::int64_t>::min(); ++s)
+          for (int m = 0; m < 4 && s != t; ++m)
+            if (key(face_of(made[s], m)) == g) to = static_cast<std::int64_t>(s * 4 + static_cast<std::size_t>(m));
+        for (std::size_t x = 0; x < outs.size() && to == std::numeric_limits<std::int64_t>::min(); ++x)
+          if (!used[x] && outs[x].k == g) to = -1 - static_cast<std::int64_t>(x), used[x] = 1;
+        if (to == std::numeric_limits<std::int64_t>::min()) return false;
+        link[t][static_cast<std::size_t>(i)] = to;
+      }
+    if (std::find(used.begin(), used.end(), 0) != used.end()) return false;
+    places_.clear();
+    for (std::size_t t = 0; t < made.size(); ++t) {
+      std::uint32_t at;
+      if (t < olds.size()) {
+        at = olds[t];
+      } else if (!free_.empty()) {
+        at = free_.back();
+        free_.pop_back();
+        spare_[at] = 0;
+      } else {
+        at = static_cast<std::uint32_t>(c_.size());
+        c_.push_back({});
+        nb_.push_back({});
+        mark_.push_back(0);
+        spare_.push_back(0);
+      }
+      places_.push_back(at);
+    }
+    for (std::size_t t = made.size(); t < olds.size(); ++t) free_.push_back(olds[t]), spare_[olds[t]] = 1;
+    for (std::size_t t = 0; t < made.size(); ++t) {
+      const std::uint32_t at = places_[t];
+      c_[at] = made[t];
+      mark_[at] = 0;
+      for (int i = 0; i < 4; ++i) {
+        const std::int64_t to = link[t][static_cast<std::size_t>(i)];
+        if (to >= 0) {
+          nb_[at][static_cast<std::size_t>(i)] = static_cast<std::int32_t>(places_[static_cast<std::size_t>(to / 4)]);
+          continue;
+        }
+        const outer& x = outs[static_cast<std::size_t>(-1 - to)];
+        nb_[at][static_cast<std::size_t>(i)] = x.n;
+        if (x.n >= 0) nb_[static_cast<std::size_t>(x.n)][static_cast<std::size_t>(x.back)] = static_cast<std::int32_t>(at);
+      }
+    }
+    last_ = places_[0];
+    return true;
+  }
   bool in_ball(std::uint32_t a, vertex_id q) const {
     const cell& c = c_[a];
     return geometry::in_sphere_perturbed(p_[c[0]], p_[c[1]], p_[c[2]], p_[c[3]], p_[q]) > 0;
