@@ -15,6 +15,7 @@
 #include "gsse/front/front_mesher.hpp"
 #include "gsse/front/gift_wrap.hpp"
 #include "gsse/front/kernels.hpp"
+#include "gsse/front/point_creation.hpp"
 #include "gsse/geometry/predicates.hpp"
 
 #include "../support/crowded_points.hpp"
@@ -482,4 +483,26 @@ BOOST_AUTO_TEST_CASE(surface_points_of_a_cylinder_match_cgal_with_few_visits) {
   const double per_cell = static_cast<double>(st.visits) / static_cast<double>(cells.size());
   BOOST_TEST_MESSAGE("grid points looked at per cell: " << per_cell);
   BOOST_TEST(per_cell < 2100.0);  // 1,927 now; 2,444 when every cap doubled
+}
+
+// The point creation's acceptance test (boundary_faces::encroached_by) with a face kept as a
+// Delaunay face with an apex x (conformer::boundary::face_apex): a point across the face from x,
+// outside its equatorial ball but inside the sphere through it and x, breaks it; the same point
+// on x's side does not; without the apex only the equatorial ball counts
+BOOST_AUTO_TEST_CASE(point_creation_tests_a_kept_face_by_its_sphere) {
+  // the face in z = 0, its equatorial ball of radius about 0.58; x just above it, so the sphere
+  // through the face and x bulges far below
+  const std::vector<point3> p{{0, 0, 0}, {1, 0, 0}, {0.5, 0.8, 0}, {0.5, 0.3, 0.1}};
+  const std::vector<tri> faces{{0, 1, 2}};
+  const std::vector<vertex_id> apex{3};
+  const front::boundary_faces<3> kept{std::span<const point3>(p), std::span<const tri>(faces), std::span<const vertex_id>(apex)};
+  const front::boundary_faces<3> gabriel{std::span<const point3>(p), std::span<const tri>(faces)};
+  const point3 below{0.5, 0.3, -1.0}, above{0.5, 0.3, 1.0}, in_ball{0.5, 0.3, 0.2};
+  BOOST_TEST(geometry::in_equatorial(p[0], p[1], p[2], below) < 0);  // outside the ball
+  BOOST_TEST(geometry::in_sphere(p[0], p[1], p[2], p[3], below) != 0);
+  BOOST_TEST(kept.encroached_by(below));
+  BOOST_TEST(!gabriel.encroached_by(below));
+  BOOST_TEST(!kept.encroached_by(above));
+  BOOST_TEST(kept.encroached_by(in_ball));
+  BOOST_TEST(gabriel.encroached_by(in_ball));
 }

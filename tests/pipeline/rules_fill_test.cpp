@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <set>
 
+#include "gsse/conformer/conformer.hpp"
 #include "gsse/geometry/predicates.hpp"
 #include "gsse/io/poly.hpp"
 #include "gsse/pipeline/pipeline.hpp"
@@ -19,9 +20,10 @@ std::string example(const char* name) { return std::string(GSSE_SOURCE_DIR) + "/
 
 template <std::size_t D>
 domain<D> mesh(const plc<D>& p, double h, pl::report& r, unsigned threads = 1,
-               const rules::front_rule_set* front = nullptr, pl::fill how = pl::fill::rules) {
+               const rules::front_rule_set* front = nullptr, pl::fill how = pl::fill::rules, bool gabriel = false) {
   pl::options o;
   o.size = h;
+  o.gabriel = gabriel;
   o.threads = threads;
   o.verify = true;
   o.interior = how;
@@ -40,11 +42,7 @@ std::size_t cells(const domain<D>& d) {
 
 /// Points of the mesh that are no PLC boundary point: interior points.
 template <std::size_t D>
-std::vector<point<D>> interior_points(const domain<D>& d, const plc<D>& p, double h) {
-  // the conformer's boundary points lie on the PLC; recompute it to tell them apart
-  conformer::options co;
-  co.size = h;
-  const auto b = conformer::conform(p, {}, co);
+std::vector<point<D>> interior_points(const domain<D>& d, const conformer::boundary<D>& b) {
   std::set<point<D>> on_boundary(b.points.begin(), b.points.end());
   std::vector<point<D>> in;
   for (const auto& q : d.points())
@@ -54,29 +52,70 @@ std::vector<point<D>> interior_points(const domain<D>& d, const plc<D>& p, doubl
 
 }  // namespace
 
+// With a Gabriel boundary (options::gabriel) no created point lies in a boundary face's closed
+// equatorial ball; by default faces kept as Delaunay faces with an apex (conformer::boundary::
+// face_apex) are tested by their sphere too, and no created point breaks any face
+// (conformer::face_encroached)
 BOOST_AUTO_TEST_CASE(rules_fill_the_mosfet_3d_with_a_valid_delaunay_mesh) {
   const auto p = io::read_tetgen_poly(example("mosfet"));
   const double h = 0.1;
-  pl::report r;
-  const auto d = mesh(p, h, r);  // verified against the PLC: valid, conforming, labelled, Delaunay
-  BOOST_TEST(r.volume_points == 0u);  // no lattice: every interior point comes from a rule
-  BOOST_TEST(r.creation.created > 0u);
-  const auto in = interior_points(d, p, h);
-  BOOST_TEST(in.size() == r.creation.created);
-  // about as many interior points as the lattice places at the same size (within a factor 2)
   pl::report rl;
   const auto dl = mesh(p, h, rl, 1, nullptr, pl::fill::lattice);
-  BOOST_TEST(2 * in.size() > rl.volume_points);
-  BOOST_TEST(in.size() < 2 * rl.volume_points);
-  // no interior point encroaches a boundary face (the acceptance rule; exact test, closed ball)
-  conformer::options co;
-  co.size = h;
-  const auto b = conformer::conform(p, {}, co);
-  std::size_t encroaching = 0;
-  for (const auto& q : in)
-    for (const auto& f : b.faces)
-      encroaching += geometry::in_equatorial(b.points[f[0]], b.points[f[1]], b.points[f[2]], q) >= 0;
-  BOOST_TEST(encroaching == 0u);
+  for (bool gabriel : {true, false}) {
+    pl::report r;
+    const auto d = mesh(p, h, r, 1, nullptr, pl::fill::rules, gabriel);  // verified against the PLC: valid, conforming, labelled, Delaunay
+    BOOST_TEST(r.delaunay_faces == !gabriel);
+    BOOST_TEST(r.volume_points == 0u);  // no lattice: every interior point comes from a rule
+    BOOST_TEST(r.creation.created > 0u);
+    // the conformer's boundary points lie on the PLC; the boundary recomputed as the pipeline
+    // made it tells them apart
+    conformer::options co;
+    co.size = h;
+    co.delaunay_faces = !gabriel;
+    const auto b = conformer::conform(p, {}, co);
+    BOOST_TEST(b.steiner == r.steiner);
+    const auto in = interior_points(d, b);
+    BOOST_TEST(in.size() == r.creation.created);
+    // about as many interior points as the lattice places at the same size (within a factor 2)
+    BOOST_TEST(2 * in.size() > rl.volume_points);
+    BOOST_TEST(in.size() < 2 * rl.volume_points);
+    // no interior point breaks a boundary face (the acceptance rule; exact tests, closed balls)
+    std::size_t encroaching = 0, in_ball = 0, kept = 0;
+    for (std::size_t f = 0; f < b.faces.size(); ++f) {
+      kept += f < b.face_apex.size() && b.face_apex[f] != no_vertex;
+      for (const auto& q : in) {
+        encroaching += conformer::face_encroached(b, f, q);
+        in_ball += geometry::in_equatorial(b.points[b.faces[f][0]], b.points[b.faces[f][1]], b.points[b.faces[f][2]], q) >= 0;
+      }
+    }
+    BOOST_TEST(encroaching == 0u, (gabriel ? "gabriel" : "delaunay faces") << ": " << encroaching << " breaking");
+    BOOST_TEST_MESSAGE((gabriel ? "gabriel" : "delaunay faces") << ": " << b.steiner << " Steiner points, " << in.size() << " created, " << kept
+                                                                  << " faces kept, " << in_ball << " created points in an equatorial ball");
+    if (gabriel) BOOST_TEST(in_ball == 0u);
+    BOOST_TEST((gabriel ? kept == 0u : kept > 0u));
+  }
+}
+
+// A prism over an obtuse triangle (0,0) (1,0) (0.5,0.02), 1 long, at size 0.3: the points of its
+// far edge lie in the equatorial balls of its wide side's faces, all on one side. A Gabriel
+// boundary splits those faces down to the prism's 0.02 (measured: 11,098 Steiner points); kept
+// as Delaunay faces they need 66 (2026-12-07). Both meshes verify.
+BOOST_AUTO_TEST_CASE(rules_fill_keeps_delaunay_faces_of_a_sliver_prism) {
+  plc<3> p;
+  p.source = "sliver prism";
+  p.points = {{0, 0, 0}, {1, 0, 0}, {0.5, 0.02, 0}, {0, 0, 1}, {1, 0, 1}, {0.5, 0.02, 1}};
+  for (const auto& q : std::vector<std::vector<vertex_id>>{{0, 1, 2}, {3, 4, 5}, {0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}}) {
+    plc_facet f;
+    f.polygons.push_back(q);
+    p.facets.push_back(f);
+  }
+  p.regions.push_back({{0.5, 0.01, 0.5}, 1, -1, "prism"});
+  pl::report rd, rg;
+  (void)mesh(p, 0.3, rd);  // verified
+  (void)mesh(p, 0.3, rg, 1, nullptr, pl::fill::rules, true);
+  BOOST_TEST(rd.delaunay_faces);
+  BOOST_TEST(!rg.delaunay_faces);
+  BOOST_TEST(10 * rd.steiner < rg.steiner, rd.steiner << " Steiner points with Delaunay faces, " << rg.steiner << " Gabriel");
 }
 
 BOOST_AUTO_TEST_CASE(rules_fill_is_identical_for_1_and_2_threads) {

@@ -2972,13 +2972,8 @@ boundary<2> session<2>::next(const boundary<2>& previous, const std::vector<poin
 bool face_encroached(const boundary<3>& b, std::size_t f, const point3& q) {
   const auto& p = b.points;
   const auto& F = b.faces[f];
-  if (geometry::in_equatorial(p[F[0]], p[F[1]], p[F[2]], q) >= 0) return true;
-  if (f >= b.face_apex.size() || b.face_apex[f] == no_vertex) return false;
-  const point3& x = p[b.face_apex[f]];
-  const int sx = geometry::orient3d(p[F[0]], p[F[1]], p[F[2]], x), sq = geometry::orient3d(p[F[0]], p[F[1]], p[F[2]], q);
-  if (sq == 0 || sq == sx) return false;  // in the plane, or on x's side, outside the equatorial ball
-  // (u, v, w, x) positively oriented: in_sphere > 0 is inside
-  return sx > 0 ? geometry::in_sphere(p[F[0]], p[F[1]], p[F[2]], x, q) >= 0 : geometry::in_sphere(p[F[1]], p[F[0]], p[F[2]], x, q) >= 0;
+  if (f >= b.face_apex.size() || b.face_apex[f] == no_vertex) return geometry::in_equatorial(p[F[0]], p[F[1]], p[F[2]], q) >= 0;
+  return geometry::breaks_face_with_apex(p[F[0]], p[F[1]], p[F[2]], p[b.face_apex[f]], q);
 }
 
 namespace {

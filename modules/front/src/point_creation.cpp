@@ -1,5 +1,6 @@
 #include "gsse/front/point_creation.hpp"
 #include "gsse/geometry/circumcentre.hpp"
+#include "gsse/geometry/exact_ball.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -166,6 +167,7 @@ template <std::size_t D>
 struct boundary_faces<D>::impl {
   std::span<const point<D>> p;
   std::vector<std::array<vertex_id, D>> faces;
+  std::vector<vertex_id> apex;                     // 3D, per face: its apex if kept as a Delaunay face, or none
   std::vector<std::pair<point<D>, point<D>>> box;  // of each face itself, for crossings
   box_buckets<D> balls, boxes;                     // diametral-ball boxes; face boxes
 
@@ -187,9 +189,10 @@ struct boundary_faces<D>::impl {
     return f.empty() ? 1 : 2 * s / static_cast<double>(f.size());
   }
 
-  impl(std::span<const point<D>> pts, std::span<const std::array<vertex_id, D>> fs)
+  impl(std::span<const point<D>> pts, std::span<const std::array<vertex_id, D>> fs, std::span<const vertex_id> ax)
       : p(pts),
         faces(fs.begin(), fs.end()),
+        apex(ax.begin(), ax.end()),
         balls(lower(pts), upper(pts), mean_size(pts, fs), 4 * fs.size() + 16),
         boxes(lower(pts), upper(pts), mean_size(pts, fs), 4 * fs.size() + 16) {
     box.reserve(faces.size());
@@ -202,15 +205,26 @@ struct boundary_faces<D>::impl {
       }
       box.emplace_back(lo, hi);
       boxes.insert(f, lo, hi);
-      const auto [blo, bhi] = ball_box<D>(padded_ball<D, D>(s));
+      auto [blo, bhi] = ball_box<D>(padded_ball<D, D>(s));
+      if constexpr (D == 3)
+        if (f < apex.size() && apex[f] != no_vertex) {
+          // a kept face: the sphere through it and its apex too (no bound: asked by every query)
+          point3 sc;
+          double sr = 0;
+          if (geometry::circumball_bound(p[faces[f][0]], p[faces[f][1]], p[faces[f][2]], p[apex[f]], sc, sr))
+            for (std::size_t k = 0; k < 3; ++k) blo[k] = std::min(blo[k], sc[k] - sr), bhi[k] = std::max(bhi[k], sc[k] + sr);
+          else
+            for (std::size_t k = 0; k < 3; ++k) blo[k] = -std::numeric_limits<double>::infinity(), bhi[k] = std::numeric_limits<double>::infinity();
+        }
       balls.insert(f, blo, bhi);
     }
   }
 };
 
 template <std::size_t D>
-boundary_faces<D>::boundary_faces(std::span<const point<D>> pts, std::span<const std::array<vertex_id, D>> faces)
-    : impl_(new impl(pts, faces)) {}
+boundary_faces<D>::boundary_faces(std::span<const point<D>> pts, std::span<const std::array<vertex_id, D>> faces,
+                                  std::span<const vertex_id> apex)
+    : impl_(new impl(pts, faces, apex)) {}
 template <std::size_t D>
 boundary_faces<D>::~boundary_faces() {
   delete impl_;
@@ -222,10 +236,12 @@ bool boundary_faces<D>::encroached_by(const point<D>& q) const {
   return !m.balls.visit(q, q, [&](std::uint32_t f) {
     const auto& F = m.faces[f];
     int in;
-    if constexpr (D == 2)
+    if constexpr (D == 2) {
       in = geometry::in_diametral(m.p[F[0]], m.p[F[1]], q);
-    else
+    } else {
+      if (f < m.apex.size() && m.apex[f] != no_vertex) return !geometry::breaks_face_with_apex(m.p[F[0]], m.p[F[1]], m.p[F[2]], m.p[m.apex[f]], q);
       in = geometry::in_equatorial(m.p[F[0]], m.p[F[1]], m.p[F[2]], q);
+    }
     return in < 0;  // closed ball: on the sphere counts as encroaching
   });
 }

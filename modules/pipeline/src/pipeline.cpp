@@ -187,7 +187,8 @@ pieces_t<D> wrap_all_creating(std::vector<point<D>>& pts, const conformer::bound
                                                       const front::creation_options& co, front::creation_stats& cs) {
   pts = b.points;
   const auto grid = front::make_grid(std::span<const point<D>>(b.points));
-  const front::boundary_faces<D> faces(std::span<const point<D>>(b.points), std::span<const std::array<vertex_id, D>>(b.faces));
+  const front::boundary_faces<D> faces(std::span<const point<D>>(b.points), std::span<const std::array<vertex_id, D>>(b.faces),
+                                       std::span<const vertex_id>(b.face_apex));
   std::vector<std::vector<point<D>>> created(l.regions.size());
   std::vector<front::creation_stats> st(l.regions.size());
   std::vector<std::size_t> ids(l.regions.size());
@@ -500,10 +501,10 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   if constexpr (D == 3)
     if (coarse) co.sides_from = &coarse->first, co.sides_labels = &coarse->second;
   // boundary and interface faces that are Delaunay but not Gabriel are kept; the refinement's
-  // rounds test each kept face's sphere (conformer::face_encroached). The front's point creation
-  // tests equatorial balls only (docs/design-decisions.md, "Boundary faces need to be Delaunay,
-  // not Gabriel")
-  co.delaunay_faces = D == 3 && !o.gabriel && !creating;
+  // rounds and the front's point creation (fill::rules) test each kept face's sphere
+  // (conformer::face_encroached, front::boundary_faces; docs/design-decisions.md, "Boundary faces
+  // need to be Delaunay, not Gabriel")
+  co.delaunay_faces = D == 3 && !o.gabriel;
   r.delaunay_faces = co.delaunay_faces;
   auto b = o.quality ? session.emplace(p, co).start(volume) : conform<D>{}(p, volume, co);
   r.steiner = b.steiner;

@@ -135,6 +135,20 @@ inline int in_sphere_perturbed(const point3& a, const point3& b, const point3& c
   return -1;
 }
 
+/// Whether q breaks a boundary face abc kept as a Delaunay face with the apex x (the empty sphere
+/// through a, b, c and x; x off the plane abc): q in the closed equatorial ball of abc, or
+/// strictly across the plane from x in the closed sphere through a, b, c, x. A point on x's side
+/// outside the ball breaks nothing: that sphere's cap on x's side lies in the ball. Exact.
+/// (conformer::face_encroached, the front's point creation; docs/design-decisions.md, "Boundary
+/// faces need to be Delaunay, not Gabriel")
+inline bool breaks_face_with_apex(const point3& a, const point3& b, const point3& c, const point3& x, const point3& q) {
+  if (in_equatorial(a, b, c, q) >= 0) return true;
+  const int sx = orient3d(a, b, c, x), sq = orient3d(a, b, c, q);
+  if (sq == 0 || sq == sx) return false;  // in the plane, or on x's side, outside the ball
+  // (a, b, c, x) positively oriented: in_sphere > 0 is inside
+  return sx > 0 ? in_sphere(a, b, c, x, q) >= 0 : in_sphere(b, a, c, x, q) >= 0;
+}
+
 /// Perturbed in-circle for a triangle abc of 3D points lying in (or, after rounding, near) a facet
 /// plane: d is tested against the equatorial ball of abc (the ball whose equator is the circumcircle
 /// of abc), which for coplanar points is exactly the in-circle test. Orientations of the

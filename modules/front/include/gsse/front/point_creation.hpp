@@ -51,11 +51,16 @@ struct creation_stats {
 template <std::size_t D>
 class boundary_faces {
  public:
-  boundary_faces(std::span<const point<D>> pts, std::span<const std::array<vertex_id, D>> faces);
+  /// `apex` (3D, optional): per face, the apex of a face kept as a Delaunay face that is not
+  /// Gabriel (conformer::boundary::face_apex), or no_vertex; such a face is broken by a point in
+  /// its closed equatorial ball or, across from the apex, in the closed sphere through it and the
+  /// apex (geometry::breaks_face_with_apex).
+  boundary_faces(std::span<const point<D>> pts, std::span<const std::array<vertex_id, D>> faces,
+                 std::span<const vertex_id> apex = {});
   ~boundary_faces();
   boundary_faces(const boundary_faces&) = delete;
   boundary_faces& operator=(const boundary_faces&) = delete;
-  /// True if q lies in the closed diametral ball of some face.
+  /// True if q lies in the closed diametral ball of some face (or breaks a kept face, above).
   bool encroached_by(const point<D>& q) const;
   /// True if the closed segment [s, q] meets some face other than `except` (same vertex set).
   bool crossed(const point<D>& s, const point<D>& q, const std::array<vertex_id, D>& except) const;

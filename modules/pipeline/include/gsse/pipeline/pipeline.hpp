@@ -53,11 +53,11 @@ struct options {
   // ones; docs/benchmarks.md, forty-fifth and forty-sixth parts). false: the mesh as the
   // placement makes it
   bool size_rounds = true;
-  // 3D: every boundary and interface face with an empty equatorial ball (Gabriel). Off (but with
-  // fill::rules, whose point creation tests equatorial balls), encroached faces that are faces of
-  // the Delaunay tetrahedralization all the same are kept (conformer::options::delaunay_faces),
-  // and the refinement's rounds test their spheres: the same conforming Delaunay guarantee with
-  // fewer points (docs/design-decisions.md, "Boundary faces need to be Delaunay, not Gabriel")
+  // 3D: every boundary and interface face with an empty equatorial ball (Gabriel). Off,
+  // encroached faces that are faces of the Delaunay tetrahedralization all the same are kept
+  // (conformer::options::delaunay_faces), and the refinement's rounds and the front's point
+  // creation (fill::rules) test their spheres: the same conforming Delaunay guarantee with fewer
+  // points (docs/design-decisions.md, "Boundary faces need to be Delaunay, not Gabriel")
   bool gabriel = false;
   unsigned threads = 1;  // threads shared by the stages (0: every hardware thread, execution::thread_count)
   bool verify = false;   // run the library verifier (gsse::verify::check against the input PLC) at the end
