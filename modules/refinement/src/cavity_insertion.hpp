@@ -204,25 +204,7 @@ class cavity {
       k = e;
     }
     // committed: the cells' places (the dead ones', spare ones, then new ones)
-    places_.clear();
-    for (std::size_t t = 0; t < made_.size(); ++t) {
-      std::uint32_t at;
-      if (t < dead_.size()) {
-        at = dead_[t];
-      } else if (!free_.empty()) {
-        at = free_.back();
-        free_.pop_back();
-        spare_[at] = 0;
-      } else {
-        at = static_cast<std::uint32_t>(c_.size());
-        c_.push_back({});
-        nb_.push_back({});
-        mark_.push_back(0);
-        spare_.push_back(0);
-      }
-      places_.push_back(at);
-    }
-    for (std::size_t t = made_.size(); t < dead_.size(); ++t) free_.push_back(dead_[t]), spare_[dead_[t]] = 1;
+    take_places(dead_, made_.size());
     for (std::size_t t = 0; t < made_.size(); ++t) {
       const std::uint32_t at = places_[t];
       c_[at] = made_[t].c;
@@ -355,6 +337,29 @@ class cavity {
     std::array<std::int32_t, 3> link;  // across faces 0-2: another star cell (>= 0) or a wall
   };
 
+  // places_: `count` places for new cells, those of `reuse` first, then spare ones, then new
+  // ones; the places of `reuse` left over become spare
+  void take_places(std::span<const std::uint32_t> reuse, std::size_t count) {
+    places_.clear();
+    for (std::size_t t = 0; t < count; ++t) {
+      std::uint32_t at;
+      if (t < reuse.size()) {
+        at = reuse[t];
+      } else if (!free_.empty()) {
+        at = free_.back();
+        free_.pop_back();
+        spare_[at] = 0;
+      } else {
+        at = static_cast<std::uint32_t>(c_.size());
+        c_.push_back({});
+        nb_.push_back({});
+        mark_.push_back(0);
+        spare_.push_back(0);
+      }
+      places_.push_back(at);
+    }
+    for (std::size_t t = count; t < reuse.size(); ++t) free_.push_back(reuse[t]), spare_[reuse[t]] = 1;
+  }
   static int index_of(const cell& c, vertex_id v) {
     for (int k = 0; k < 4; ++k)
       if (c[static_cast<std::size_t>(k)] == v) return k;
@@ -403,25 +408,7 @@ class cavity {
         link[t][static_cast<std::size_t>(i)] = to;
       }
     if (std::find(used.begin(), used.end(), 0) != used.end()) return false;
-    places_.clear();
-    for (std::size_t t = 0; t < made.size(); ++t) {
-      std::uint32_t at;
-      if (t < olds.size()) {
-        at = olds[t];
-      } else if (!free_.empty()) {
-        at = free_.back();
-        free_.pop_back();
-        spare_[at] = 0;
-      } else {
-        at = static_cast<std::uint32_t>(c_.size());
-        c_.push_back({});
-        nb_.push_back({});
-        mark_.push_back(0);
-        spare_.push_back(0);
-      }
-      places_.push_back(at);
-    }
-    for (std::size_t t = made.size(); t < olds.size(); ++t) free_.push_back(olds[t]), spare_[olds[t]] = 1;
+    take_places(olds, made.size());
     for (std::size_t t = 0; t < made.size(); ++t) {
       const std::uint32_t at = places_[t];
       c_[at] = made[t];
