@@ -109,8 +109,8 @@ BOOST_AUTO_TEST_CASE(a_delaunay_cavity_is_left_as_it_is) {
   BOOST_TEST(cav.cells().size() == 2u);
 }
 
-// the face between the two cells is a wall (each cell's face there is fixed): no flip crosses
-// a wall, and the cavity stays not Delaunay across nothing (no face between cells is left)
+// the face between the two flat cells is a wall (each cell's face there is fixed): no flip
+// crosses a wall, and with no face between two cells the cavity counts as locally Delaunay
 BOOST_AUTO_TEST_CASE(a_wall_is_never_flipped) {
   const auto p = points(0.2);
   std::vector<ins::cell> cells{{0, 1, 2, 3}, {0, 1, 2, 4}};

@@ -160,10 +160,7 @@ class cavity {
         continue;
       }
       if (geometry::orient3d(p_[f[0]], p_[f[1]], p_[f[2]], p_[q]) <= 0) return false;
-      std::int32_t back = -1;  // the place of a in its neighbour's list
-      if (n >= 0)
-        for (int j = 0; j < 4; ++j)
-          if (nb_[static_cast<std::size_t>(n)][static_cast<std::size_t>(j)] == static_cast<std::int32_t>(a)) back = j;
+      const std::int32_t back = n >= 0 ? back_of(static_cast<std::uint32_t>(n), a) : -1;  // the place of a in its neighbour's list
       made_.push_back({{f[0], f[1], f[2], q}, n, back, {}});
     }
     if (made_.empty()) return false;
@@ -248,12 +245,9 @@ class cavity {
       for (int i = 0; i < 4; ++i) {
         const std::int32_t n = nb_[a][static_cast<std::size_t>(i)];
         if (n < 0 || static_cast<std::size_t>(n) < a) continue;  // each pair once
-        const cell& b = c_[static_cast<std::size_t>(n)];
-        for (int j = 0; j < 4; ++j)
-          if (nb_[static_cast<std::size_t>(n)][static_cast<std::size_t>(j)] == static_cast<std::int32_t>(a)) {
-            if (in_ball(static_cast<std::uint32_t>(a), b[static_cast<std::size_t>(j)])) return false;
-            break;
-          }
+        if (const int j = back_of(static_cast<std::uint32_t>(n), static_cast<std::uint32_t>(a));
+            j >= 0 && in_ball(static_cast<std::uint32_t>(a), c_[static_cast<std::size_t>(n)][static_cast<std::size_t>(j)]))
+          return false;
       }
     }
     return true;
