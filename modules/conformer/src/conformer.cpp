@@ -17,6 +17,7 @@
 
 #include "balls.hpp"
 #include "encroachment.hpp"
+#include "thin_layers.hpp"
 #include "gsse/front/front_mesher.hpp"
 #include "gsse/geometry/hash_grid.hpp"
 #include "gsse/container/key_set.hpp"
@@ -251,6 +252,9 @@ class state {
   virtual void on_facet(std::uint32_t, vertex_id) {}
   /// 3D: the shift along PLC edge e of its points (state3::edge_shear), none in 2D
   virtual point<D> edge_shear(std::uint32_t) const { return point<D>{}; }
+  /// The spacing PLC edge e is split at with a uniform size: the size, or in 3D finer along a
+  /// thin layer's wall (state3::edge_size, options::thin_layer)
+  virtual double edge_size(std::uint32_t) const { return opt_.size; }
   virtual ~state() = default;
 
   /// Splits subsegment (a, b) of PLC edge e as one too long is split (the on-carrier rule: a shell
@@ -378,7 +382,7 @@ class state {
         point<D> a = pu, b = pv;
         const bool flip = lex_less(b, a);
         if (flip) std::swap(a, b);
-        const auto n = static_cast<int>(std::ceil(len / opt_.size - 1e-9));
+        const auto n = static_cast<int>(std::ceil(len / edge_size(e) - 1e-9));
         point<D> sheared = n > 1 ? edge_shear(e) : point<D>{};
         if (std::sqrt(dot(sheared, sheared)) > 0.05 * len / n) sheared = point<D>{};
         for (int i = 1; i < n; ++i) {
@@ -2538,8 +2542,32 @@ class state3 : public state<3> {
   /// side, not into a triangle whose equatorial ball it would encroach: lattices anchored at each
   /// facet's own corner were offset by the layer's step and refined the layer's both walls 70%
   /// beyond the size (the trench liner).
+  /// options::thin_layer: per facet, the spacing of its lattice (and of its PLC edges' splits):
+  /// thin_layer x the least gap to a facet it faces across a thin layer, where that is below the
+  /// size; the size elsewhere. Computed once, before the edges are split.
+  void find_thin_layers() {
+    spacing_.assign(facets_.size(), opt_.size);
+    if (!(opt_.thin_layer > 0) || !(opt_.size > 0) || graded()) return;
+    std::vector<thin::facet> fs(facets_.size());
+    for (std::uint32_t f = 0; f < facets_.size(); ++f) {
+      const auto& S = facets_[f];
+      auto& F = fs[f];
+      F.unit = S.unit, F.e1 = S.e1, F.e2 = S.e2;
+      for (vertex_id v : S.corners) F.corners.push_back(out_.points[v]), F.corner_ids.push_back(v);
+      for (auto [e, fw] : S.sides) F.sides.push_back({out_.points[edges_[e].u], out_.points[edges_[e].v]});
+    }
+    const auto gap = thin::layer_gaps(fs, model_size_, opt_.size / opt_.thin_layer);
+    for (std::uint32_t f = 0; f < facets_.size(); ++f)
+      if (std::isfinite(gap[f])) spacing_[f] = std::min(opt_.size, opt_.thin_layer * gap[f]);
+  }
+  double edge_size(std::uint32_t e) const override {
+    double h = opt_.size;
+    for (std::uint32_t f : edges_[e].facets)
+      if (f < spacing_.size()) h = std::min(h, spacing_[f]);
+    return h;
+  }
+
   void seed_facets() {
-    const double h = opt_.size;
     const point3 origin = box_lo_;
     // each facet's lattice is computed in parallel (it reads only its own facet), then the points
     // are added facet by facet, so ids are the same for any thread count
@@ -2550,6 +2578,7 @@ class state3 : public state<3> {
     for_each(execution::par(opt_.threads), ids, [&](std::uint32_t f) {
       const auto& S = facets_[f];
       if (S.sides.empty()) return;
+      const double h = f < spacing_.size() ? spacing_[f] : opt_.size;
       const auto vs = facet_vertices(f);
       const point3 o = out_.points[vs[0]];
       const auto [u, v] = lattice_frame(S);
@@ -2671,6 +2700,7 @@ class state3 : public state<3> {
 
   /// conform(): the whole run. keep: the state stays for continue_run() (session::start()).
   boundary<3> run(bool keep = false) {
+    if (sized()) find_thin_layers();
     presplit_edges();
     if (sized()) {
       conform_segments();
@@ -2865,6 +2895,7 @@ class state3 : public state<3> {
 
  private:
   std::vector<facet_state> facets_;
+  std::vector<double> spacing_;  // per facet, its lattice's spacing (find_thin_layers; empty: the size)
   std::vector<std::uint32_t> edge_of_;
   std::vector<std::array<vertex_id, 2>> ends_;
   std::vector<std::array<bool, 2>> meshed_;  // per facet: is its positive / negative side in a segment
@@ -2969,6 +3000,8 @@ template <>
 boundary<2> session<2>::next(const boundary<2>& previous, const std::vector<point2>& added, const std::vector<std::size_t>& split) {
   return resume(impl_->p, previous, added, split, impl_->o);
 }
+double thin_layer_ratio(double bound) { return bound >= 1.4 ? 0.96 * std::sqrt(3 * bound * bound - 0.75) : 0.0; }
+
 bool face_encroached(const boundary<3>& b, std::size_t f, const point3& q) {
   const auto& p = b.points;
   const auto& F = b.faces[f];

@@ -506,6 +506,10 @@ domain<D> mesh(const plc<D>& p, const std::vector<point<D>>& cloud, const option
   // need to be Delaunay, not Gabriel")
   co.delaunay_faces = D == 3 && !o.gabriel;
   r.delaunay_faces = co.delaunay_faces;
+  // 3D with --quality and a uniform size: a thin layer's walls are seeded at its gap's scale, where
+  // its prisms meet the bound, instead of the rounds refining them (conformer::options::thin_layer)
+  if (D == 3 && o.quality && o.size > 0 && !field_built && co.thin_layer == 0)
+    co.thin_layer = conformer::thin_layer_ratio(refinement::ratio_bound(3, o.quality_bound));
   auto b = o.quality ? session.emplace(p, co).start(volume) : conform<D>{}(p, volume, co);
   r.steiner = b.steiner;
   lap("conform");

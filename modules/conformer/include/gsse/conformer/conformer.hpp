@@ -50,6 +50,13 @@ struct options {
   // reports those subfacets
   bool delaunay_faces = false;
   bool merge_coplanar = true;  // 3D: merge coplanar facets of one marker (see gsse/plc/facet_regions.hpp)
+  // 3D, a uniform `size` (no local size): a facet facing a parallel facet t away across a thin
+  // layer (src/thin_layers.hpp says what counts), with thin_layer x t < size, is seeded and its
+  // PLC edges are split at thin_layer x t instead of `size`. 0: off. The pipeline sets it with
+  // --quality from the radius-edge bound (thin_layer_ratio) unless it is set already (a negative
+  // value: off): the layer's right prisms then meet the bound in the first mesh
+  // (docs/design-decisions.md, "Thin layers are seeded at the gap's scale under --quality")
+  double thin_layer = 0;
   // receives, per conformer round, the number of splits and which rule and action fired how
   // often (one line each); empty: no trace. The library prints nothing itself (gsse-mesh passes
   // one that prints to stderr when GSSE_CONFORM_TRACE=1).
@@ -62,6 +69,14 @@ struct options {
   const boundary<3>* sides_from = nullptr;
   const labelling* sides_labels = nullptr;
 };
+
+/// options::thin_layer for a radius-edge bound B (3D): a right prism of height t over an
+/// equilateral triangle of side a has circumradius sqrt(a^2/3 + t^2/4), so its tetrahedra's
+/// radius-edge ratio is at most B while a <= t sqrt(3 B^2 - 3/4) (2.29 at B = 1.414); the spacing
+/// is 0.96 of that (2.2 t at 1.414). 0 (off) below B = 1.4: at 1.2 and 1.3 the rounds took longer
+/// from such walls on some benchmark structures (the trench at 1.2 did not converge in 100
+/// rounds; docs/benchmarks.md, seventy-fourth part).
+double thin_layer_ratio(double bound);
 
 /// Where a vertex lies: on a PLC vertex, on a PLC edge, inside a facet (3D), or free (volume).
 struct home {
