@@ -52,9 +52,9 @@ BOOST_AUTO_TEST_CASE(facing_parallel_walls_are_a_layer) {
     const auto g = th::layer_gaps({quad({0, 0, 0}, ex, ey, 0), quad({0, 0, 0.01}, ey, ex, 4)}, model, 0.05);
     BOOST_TEST(g[0] == 0.01, boost::test_tools::tolerance(1e-12));
   }
-  // only the part that faces: a small square over one corner of a large one, either way round
+  // a smaller square over the middle of a larger one: each centroid projects into the other
   {
-    const auto g = th::layer_gaps({quad({0, 0, 0}, ex, ey, 0), quad({0.05, 0.05, 0.01}, 0.1 * ex, 0.1 * ey, 4)}, model, 0.05);
+    const auto g = th::layer_gaps({quad({0, 0, 0}, ex, ey, 0), quad({0.3, 0.3, 0.01}, 0.4 * ex, 0.4 * ey, 4)}, model, 0.05);
     BOOST_TEST(g[0] == 0.01, boost::test_tools::tolerance(1e-12));
     BOOST_TEST(g[1] == 0.01, boost::test_tools::tolerance(1e-12));
   }
@@ -71,6 +71,13 @@ BOOST_AUTO_TEST_CASE(what_is_not_a_layer) {
   auto gaps = [](const th::facet& b, double max_gap = 0.05) { return th::layer_gaps({quad({0, 0, 0}, ex, ey, 0), b}, model, max_gap); };
   // side by side, not facing
   BOOST_TEST(gaps(quad({1.5, 0, 0.01}, ex, ey, 4))[0] == inf);
+  // facing in part only: a small square over one corner (the large one's centroid is not over
+  // it), for neither of the two
+  {
+    const auto g = gaps(quad({0.05, 0.05, 0.01}, 0.1 * ex, 0.1 * ey, 4));
+    BOOST_TEST(g[0] == inf);
+    BOOST_TEST(g[1] == inf);
+  }
   // farther apart than max_gap
   BOOST_TEST(gaps(quad({0, 0, 0.01}, ex, ey, 4), 0.005)[0] == inf);
   // tilted by 1e-6 radians: not parallel (1e-9)

@@ -14,9 +14,11 @@
 // - whose planes lie t apart, with 1e-8 of the model's size < t <= max_gap (closer planes count
 //   as one plane: coplanar facets are not a layer);
 // - that share no corner (a fold between nearly coplanar neighbours is not a layer);
-// - and face each other: the centroid of one's corners, projected into the other's plane, lies
-//   inside the other facet (crossing test against its boundary edges, holes included), either
-//   way round.
+// - and face each other: the centroid of each one's corners, projected into the other's plane,
+//   lies inside the other facet (crossing test against its boundary edges, holes included). Both
+//   ways round: with either way, OpenCASCADE's chair (corpus, --size at the diagonal / 20,
+//   --quality 1.414) took its faces 0.11 and 0.3 apart, of 8 and 37 corners, facing in part only,
+//   for layers, and its rounds ran to the cap of 250 (97,927 points against 83,103 in 30).
 
 #include <algorithm>
 #include <array>
@@ -137,7 +139,7 @@ inline std::vector<double> layer_gaps(const std::vector<facet>& fs, double model
                 }
                 *a < *b ? ++a : ++b;
               }
-              if (shared || !(covers(F, centre[j] + origin) || covers(G, centre[i] + origin))) continue;
+              if (shared || !(covers(F, centre[j] + origin) && covers(G, centre[i] + origin))) continue;
               gap[i] = t;
             }
           }
