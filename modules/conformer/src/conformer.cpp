@@ -2533,15 +2533,6 @@ class state3 : public state<3> {
     return {sign * S.e1, S.e2};
   }
 
-  /// Sizing: a triangular lattice of spacing `size` in each facet's plane, clipped to the facet
-  /// and kept size/2 away from its boundary vertices. Exact on axis-aligned facets (the constant
-  /// coordinate is copied), within rounding on slanted ones. The lattice is global: its frame
-  /// comes from the plane's normal alone (sign made canonical) and its origin is one point for
-  /// all facets, so parallel facets get the same lattice, point opposite point. Across a layer
-  /// thinner than the size (an oxide, a liner) a point then projects onto a vertex of the other
-  /// side, not into a triangle whose equatorial ball it would encroach: lattices anchored at each
-  /// facet's own corner were offset by the layer's step and refined the layer's both walls 70%
-  /// beyond the size (the trench liner).
   /// options::thin_layer: per facet, the spacing of its lattice (and of its PLC edges' splits):
   /// thin_layer x the least gap to a facet it faces across a thin layer, where that is below the
   /// size; the size elsewhere. Computed once, before the edges are split.
@@ -2567,6 +2558,15 @@ class state3 : public state<3> {
     return h;
   }
 
+  /// Sizing: a triangular lattice of spacing `size` (spacing_[f]: finer on a thin layer's wall) in each facet's plane, clipped to the facet
+  /// and kept size/2 away from its boundary vertices. Exact on axis-aligned facets (the constant
+  /// coordinate is copied), within rounding on slanted ones. The lattice is global: its frame
+  /// comes from the plane's normal alone (sign made canonical) and its origin is one point for
+  /// all facets, so parallel facets get the same lattice, point opposite point. Across a layer
+  /// thinner than the size (an oxide, a liner) a point then projects onto a vertex of the other
+  /// side, not into a triangle whose equatorial ball it would encroach: lattices anchored at each
+  /// facet's own corner were offset by the layer's step and refined the layer's both walls 70%
+  /// beyond the size (the trench liner).
   void seed_facets() {
     const point3 origin = box_lo_;
     // each facet's lattice is computed in parallel (it reads only its own facet), then the points
@@ -2578,7 +2578,7 @@ class state3 : public state<3> {
     for_each(execution::par(opt_.threads), ids, [&](std::uint32_t f) {
       const auto& S = facets_[f];
       if (S.sides.empty()) return;
-      const double h = f < spacing_.size() ? spacing_[f] : opt_.size;
+      const double h = spacing_[f];  // run() found them first
       const auto vs = facet_vertices(f);
       const point3 o = out_.points[vs[0]];
       const auto [u, v] = lattice_frame(S);

@@ -11,7 +11,7 @@
 // - two facets whose unit normals are parallel or opposite within 1e-9 radians (the walls of an
 //   axis-aligned layer exactly, a turned layer's within rounding; walls that are only
 //   approximately parallel, as CAD may give, are not found: the rounds refine those as before);
-// - whose planes lie t apart, with 1e-8 of the model's size < t <= max_gap (closer planes count
+// - whose planes lie t apart, with 2e-8 of the model's size < t <= max_gap (closer planes count
 //   as one plane: coplanar facets are not a layer);
 // - that share no corner (a fold between nearly coplanar neighbours is not a layer);
 // - and face each other: the centroid of each one's corners, projected into the other's plane,
@@ -104,45 +104,45 @@ inline std::vector<double> layer_gaps(const std::vector<facet>& fs, double model
   double far = 0;
   for (std::uint32_t i = 0; i < fs.size(); ++i) far = std::max(far, std::sqrt(dot(centre[i], centre[i])));
   const double slack = 8 * q * far;  // at most 8e-9 of the model's size: below min_gap
+  // the cells a facet's parallel and opposite normals may lie in
+  auto neighbours = [&](const point3& n) {
+    std::vector<const cell*> found;
+    for (const double sign : {1.0, -1.0}) {
+      const key k0 = cell_of(sign * n);
+      for (long long dx = -1; dx <= 1; ++dx)
+        for (long long dy = -1; dy <= 1; ++dy)
+          for (long long dz = -1; dz <= 1; ++dz)
+            if (const auto it = cells.find(key{k0[0] + dx, k0[1] + dy, k0[2] + dz}); it != cells.end()) found.push_back(&it->second);
+    }
+    return found;
+  };
+  auto share_corner = [](const facet& F, const facet& G) {
+    for (auto a = F.corner_ids.begin(), b = G.corner_ids.begin(); a != F.corner_ids.end() && b != G.corner_ids.end();) {
+      if (*a == *b) return true;
+      *a < *b ? ++a : ++b;
+    }
+    return false;
+  };
+  // the band of planes closer than min_gap (coplanar facets, possibly thousands of an STL's) is
+  // skipped: the facets below it and above it, each range found by bisection
+  const double band = min_gap - slack;
   for (std::uint32_t i = 0; i < fs.size(); ++i) {
     const auto& F = fs[i];
     if (F.sides.empty() || F.corners.empty()) continue;
-    for (const double sign : {1.0, -1.0}) {
-      const key k0 = cell_of(sign * F.unit);
-      for (long long dx = -1; dx <= 1; ++dx)
-        for (long long dy = -1; dy <= 1; ++dy)
-          for (long long dz = -1; dz <= 1; ++dz) {
-            const auto it = cells.find(key{k0[0] + dx, k0[1] + dy, k0[2] + dz});
-            if (it == cells.end()) continue;
-            const auto& c = it->second;
-            const double d = dot(centre[i], c.dir);
-            // the facets below and above, each range found by bisection; the band of planes
-            // closer than min_gap (coplanar facets, possibly thousands of an STL's) is skipped
-            const double band = min_gap - slack;
-            auto at_offset = [&c](double v) {
-              return std::lower_bound(c.by_offset.begin(), c.by_offset.end(), std::make_pair(v, std::uint32_t{0}));
-            };
-            for (auto [lo, hi] : {std::pair{d - max_gap - slack, d - band}, std::pair{d + band, d + max_gap + slack}})
-            for (auto at = at_offset(lo); at != c.by_offset.end() && at->first <= hi; ++at) {
-              const std::uint32_t j = at->second;
-              if (j == i) continue;
-              const auto& G = fs[j];
-              const point3 x = cross(F.unit, G.unit);
-              if (dot(x, x) > 1e-18) continue;  // more than 1e-9 radians apart
-              const double t = std::abs(dot(centre[j] - centre[i], F.unit));
-              if (!(t > min_gap) || t > max_gap || t >= gap[i]) continue;
-              bool shared = false;
-              for (auto a = F.corner_ids.begin(), b = G.corner_ids.begin(); a != F.corner_ids.end() && b != G.corner_ids.end();) {
-                if (*a == *b) {
-                  shared = true;
-                  break;
-                }
-                *a < *b ? ++a : ++b;
-              }
-              if (shared || !(covers(F, centre[j] + origin) && covers(G, centre[i] + origin))) continue;
-              gap[i] = t;
-            }
-          }
+    for (const cell* c : neighbours(F.unit)) {
+      const double d = dot(centre[i], c->dir);
+      for (auto [lo, hi] : {std::pair{d - max_gap - slack, d - band}, std::pair{d + band, d + max_gap + slack}}) {
+        auto at = std::lower_bound(c->by_offset.begin(), c->by_offset.end(), std::make_pair(lo, std::uint32_t{0}));
+        for (; at != c->by_offset.end() && at->first <= hi; ++at) {
+          const std::uint32_t j = at->second;
+          const auto& G = fs[j];
+          const point3 x = cross(F.unit, G.unit);
+          if (j == i || dot(x, x) > 1e-18) continue;  // itself, or more than 1e-9 radians apart
+          const double t = std::abs(dot(centre[j] - centre[i], F.unit));
+          if (!(t > min_gap) || t > max_gap || t >= gap[i] || share_corner(F, G)) continue;
+          if (covers(F, centre[j] + origin) && covers(G, centre[i] + origin)) gap[i] = t;
+        }
+      }
     }
   }
   return gap;
